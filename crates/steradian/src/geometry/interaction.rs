@@ -1,0 +1,89 @@
+use glam::{Vec2, Vec3};
+
+use super::{Frame, Ray};
+
+/// What a ray–primitive test returns before any shading data is computed: the distance and
+/// the primitive's own parameters (barycentrics for triangles, (u, v) for analytic shapes).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PreliminaryHit {
+    /// Distance along the (unit) ray direction, m.
+    pub t: f32,
+    /// Shape-specific surface parameters (triangle barycentrics b1, b2; analytic uv).
+    pub uv: Vec2,
+    /// Index of the shape in the scene.
+    pub shape: u32,
+    /// Index of the primitive inside the shape (triangle index; 0 for analytic shapes).
+    pub prim: u32,
+}
+
+/// A point on a surface with everything shading needs.
+#[derive(Clone, Copy, Debug)]
+pub struct SurfaceInteraction {
+    /// Position, m.
+    pub p: Vec3,
+    /// Distance from the ray origin, m.
+    pub t: f32,
+    /// Geometric normal in the shape's own orientation (outward / front side; not flipped
+    /// towards the ray). Unit length.
+    pub n: Vec3,
+    /// Shading frame; `sh_frame.n` is the (possibly interpolated) shading normal, oriented on
+    /// the same side as `n`.
+    pub sh_frame: Frame,
+    /// Surface (texture) coordinates.
+    pub uv: Vec2,
+    /// Direction back towards the ray origin (= −ray.d), world space.
+    pub wo: Vec3,
+    /// Index of the shape hit.
+    pub shape: u32,
+    /// Index of the primitive inside the shape.
+    pub prim: u32,
+}
+
+/// Offset for spawned rays, relative to the magnitude of the coordinates: floating-point
+/// positions carry an error of a few ulps of max|p|, so the origin is pushed that far off the
+/// surface along the geometric normal (to the side the new ray leaves through).
+pub const RAY_EPSILON: f32 = 1e-4;
+
+/// Pushes `p` off the surface with geometric normal `n` to the side of direction `d`.
+#[inline]
+pub fn offset_ray_origin(p: Vec3, n: Vec3, d: Vec3) -> Vec3 {
+    let mag = (1.0 + p.abs().max_element()) * RAY_EPSILON;
+    let offset = n * mag;
+    if n.dot(d) >= 0.0 {
+        p + offset
+    } else {
+        p - offset
+    }
+}
+
+impl SurfaceInteraction {
+    /// `w` (world) in the local shading frame.
+    #[inline]
+    pub fn to_local(&self, w: Vec3) -> Vec3 {
+        self.sh_frame.to_local(w)
+    }
+
+    #[inline]
+    pub fn to_world(&self, w: Vec3) -> Vec3 {
+        self.sh_frame.to_world(w)
+    }
+
+    /// A ray leaving this point in direction `d` (unit), offset to avoid self-intersection.
+    #[inline]
+    pub fn spawn_ray(&self, d: Vec3) -> Ray {
+        Ray::infinite(offset_ray_origin(self.p, self.n, d), d)
+    }
+
+    /// A shadow ray from this point towards `target` that stops just short of it.
+    #[inline]
+    pub fn spawn_ray_to(&self, target: Vec3) -> Ray {
+        let d = target - self.p;
+        let o = offset_ray_origin(self.p, self.n, d);
+        let d = target - o;
+        let dist = d.length();
+        Ray::new(o, d / dist, dist * (1.0 - SHADOW_EPSILON))
+    }
+}
+
+/// Relative shortening of shadow rays so that they stop before the surface they aim at.
+pub const SHADOW_EPSILON: f32 = 1e-3;

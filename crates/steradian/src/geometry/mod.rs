@@ -1,0 +1,13 @@
+//! Rays, bounding boxes, transforms, frames and surface interactions.
+
+mod aabb;
+mod frame;
+mod interaction;
+mod ray;
+mod transform;
+
+pub use aabb::Aabb;
+pub use frame::Frame;
+pub use interaction::{offset_ray_origin, PreliminaryHit, SurfaceInteraction};
+pub use ray::Ray;
+pub use transform::{Transform, TransformError};

@@ -1,0 +1,1 @@
+//! Closed-form radiometry (filled in by the radiometry issue).

@@ -1,0 +1,9 @@
+//! Random numbers, samplers and warps from the unit square to the domains light is
+//! integrated over.
+
+mod pcg32;
+mod sampler;
+pub mod warp;
+
+pub use pcg32::Pcg32;
+pub use sampler::{PixelSampler, Sampler, SamplerKind};

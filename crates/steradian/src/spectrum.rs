@@ -1,0 +1,23 @@
+//! Colour as linear RGB.
+//!
+//! steradian renders in RGB like Mitsuba 3's `*_rgb` variants: each channel carries the same
+//! radiometric quantity (a radiance, an irradiance, a reflectance...) for its primary. Values
+//! are linear (no gamma) and unclamped.
+
+/// A linear RGB triple. The unit is that of the quantity it stands for.
+pub type Spectrum = glam::Vec3;
+
+/// Luminance weights of linear sRGB / Rec. 709 primaries (the Y row of RGB → XYZ).
+pub const LUMINANCE_WEIGHTS: Spectrum = Spectrum::new(0.212671, 0.715160, 0.072169);
+
+/// Photopic luminance Y of a linear RGB value (same unit as the value).
+#[inline]
+pub fn luminance(s: Spectrum) -> f32 {
+    s.dot(LUMINANCE_WEIGHTS)
+}
+
+/// True when every channel is finite.
+#[inline]
+pub fn is_finite(s: Spectrum) -> bool {
+    s.is_finite()
+}

@@ -1,0 +1,201 @@
+//! OpenEXR output and input of [`Image`]s.
+//!
+//! Files are written as one EXR part with lossless compression; the main image is stored in
+//! channels `R`, `G`, `B`, and extra layers as `<prefix>.R`, `<prefix>.G`, `<prefix>.B` (e.g.
+//! `stderr.R`), the naming Mitsuba and image viewers use for layers.
+
+use std::path::Path;
+
+use ::exr::prelude::{
+    f16, AnyChannel, AnyChannels, FlatSamples, Image as ExrImage, SmallVec, WritableImage,
+};
+
+use super::film::ComponentFormat;
+use super::image::Image;
+
+/// Writes `image` as float32 RGB (channels R, G, B).
+pub fn write_exr(path: &Path, image: &Image) -> Result<(), String> {
+    write_exr_layers_as(path, &[("", image)], ComponentFormat::Float32)
+}
+
+/// Writes several same-sized images into one float32 EXR: the layer with prefix `""` becomes
+/// channels `R`, `G`, `B`, a layer with prefix `p` becomes `p.R`, `p.G`, `p.B`.
+pub fn write_exr_layers(path: &Path, layers: &[(&str, &Image)]) -> Result<(), String> {
+    write_exr_layers_as(path, layers, ComponentFormat::Float32)
+}
+
+/// [`write_exr_layers`] with a choice of float16 or float32 samples.
+pub fn write_exr_layers_as(
+    path: &Path,
+    layers: &[(&str, &Image)],
+    format: ComponentFormat,
+) -> Result<(), String> {
+    let err = |msg: String| format!("cannot write EXR {}: {msg}", path.display());
+    let Some((_, first)) = layers.first() else {
+        return Err(err("no image to write".into()));
+    };
+    let (w, h) = (first.width, first.height);
+    if w == 0 || h == 0 {
+        return Err(err(format!("empty image {w}x{h}")));
+    }
+    let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
+    let mut names: Vec<String> = Vec::new();
+    for (prefix, img) in layers {
+        if img.width != w || img.height != h || img.data.len() != 3 * w as usize * h as usize {
+            return Err(err(format!(
+                "layer \"{prefix}\" is {}x{}, the first layer is {w}x{h}",
+                img.width, img.height
+            )));
+        }
+        for (c, ch) in ["R", "G", "B"].iter().enumerate() {
+            let name = if prefix.is_empty() { ch.to_string() } else { format!("{prefix}.{ch}") };
+            if names.contains(&name) {
+                return Err(err(format!("duplicate channel {name}")));
+            }
+            let values = img.data.iter().skip(c).step_by(3).copied();
+            let samples = match format {
+                ComponentFormat::Float32 => FlatSamples::F32(values.collect()),
+                ComponentFormat::Float16 => {
+                    FlatSamples::F16(values.map(f16::from_f32).collect())
+                }
+            };
+            channels.push(AnyChannel::new(name.as_str(), samples));
+            names.push(name);
+        }
+    }
+    let image = ExrImage::from_channels((w as usize, h as usize), AnyChannels::sort(channels));
+    image.write().to_file(path).map_err(|e| err(e.to_string()))
+}
+
+/// Reads the RGB channels (`R`, `G`, `B`, float16, float32 or uint32; any compression) of an
+/// EXR file. The first layer (part) holding all three is used; an error if none does.
+pub fn read_exr(path: &Path) -> Result<Image, String> {
+    let err = |msg: String| format!("cannot read EXR {}: {msg}", path.display());
+    let image = ::exr::prelude::read_all_flat_layers_from_file(path).map_err(|e| err(e.to_string()))?;
+    for layer in &image.layer_data {
+        let find = |name: &str| layer.channel_data.list.iter().find(|c| c.name.eq(name));
+        let (Some(r), Some(g), Some(b)) = (find("R"), find("G"), find("B")) else {
+            continue;
+        };
+        let (w, h) = (layer.size.width(), layer.size.height());
+        let n = w * h;
+        let mut data = vec![0.0f32; 3 * n];
+        for (c, ch) in [r, g, b].into_iter().enumerate() {
+            if ch.sample_data.len() != n {
+                return Err(err(format!(
+                    "channel {} has {} samples, expected {n} (subsampled channels are not supported)",
+                    ch.name,
+                    ch.sample_data.len()
+                )));
+            }
+            for (i, v) in ch.sample_data.values_as_f32().enumerate() {
+                data[3 * i + c] = v;
+            }
+        }
+        return Image::from_data(w as u32, h as u32, data).map_err(err);
+    }
+    Err(err("no layer with R, G and B channels".into()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::sampling::Pcg32;
+
+    fn tmp(name: &str) -> std::path::PathBuf {
+        let dir = std::env::temp_dir().join(format!("steradian-film-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        dir.join(name)
+    }
+
+    fn random_image(w: u32, h: u32, seed: u64) -> Image {
+        let mut rng = Pcg32::new(seed, 7);
+        // Include values that f16 cannot represent exactly and a wide dynamic range.
+        let data = (0..w * h * 3)
+            .map(|i| (rng.next_f32() * 2.0 - 0.2) * 10f32.powi((i % 7) as i32 - 3))
+            .collect();
+        Image::from_data(w, h, data).unwrap()
+    }
+
+    #[test]
+    fn exr_round_trip_f32_exact() {
+        let img = random_image(13, 7, 1);
+        let p = tmp("rt.exr");
+        write_exr(&p, &img).unwrap();
+        let back = read_exr(&p).unwrap();
+        assert_eq!(back.width, 13);
+        assert_eq!(back.height, 7);
+        assert_eq!(back.data, img.data); // bit-exact, including layout
+        std::fs::remove_file(&p).ok();
+    }
+
+    #[test]
+    fn exr_f16_round_trip_within_half_precision() {
+        let img = random_image(5, 4, 2);
+        let p = tmp("rt16.exr");
+        write_exr_layers_as(&p, &[("", &img)], ComponentFormat::Float16).unwrap();
+        let back = read_exr(&p).unwrap();
+        for (a, b) in back.data.iter().zip(&img.data) {
+            assert_eq!(*a, f16::from_f32(*b).to_f32());
+            assert!((a - b).abs() <= b.abs() * 1e-3 + 1e-7);
+        }
+        std::fs::remove_file(&p).ok();
+    }
+
+    #[test]
+    fn exr_layers_readable() {
+        let main = random_image(6, 5, 3);
+        let err = random_image(6, 5, 4);
+        let p = tmp("layers.exr");
+        write_exr_layers(&p, &[("", &main), ("stderr", &err)]).unwrap();
+        // The main RGB is read back.
+        assert_eq!(read_exr(&p).unwrap().data, main.data);
+        // The extra layer's channels are there with their values.
+        let raw = ::exr::prelude::read_all_flat_layers_from_file(&p).unwrap();
+        let chans = &raw.layer_data[0].channel_data.list;
+        let names: Vec<String> = chans.iter().map(|c| c.name.to_string()).collect();
+        for n in ["R", "G", "B", "stderr.R", "stderr.G", "stderr.B"] {
+            assert!(names.iter().any(|x| x == n), "missing {n} in {names:?}");
+        }
+        let sg = chans.iter().find(|c| c.name.eq("stderr.G")).unwrap();
+        let got: Vec<f32> = sg.sample_data.values_as_f32().collect();
+        let want: Vec<f32> = err.data.iter().skip(1).step_by(3).copied().collect();
+        assert_eq!(got, want);
+        // Mismatched sizes are refused.
+        let small = Image::new(2, 2);
+        assert!(write_exr_layers(&p, &[("", &main), ("x", &small)]).is_err());
+        std::fs::remove_file(&p).ok();
+    }
+
+    #[test]
+    fn exr_read_errors() {
+        let missing = tmp("does-not-exist.exr");
+        let e = read_exr(&missing).unwrap_err();
+        assert!(e.contains("does-not-exist.exr"), "{e}");
+        let corrupt = tmp("corrupt.exr");
+        std::fs::write(&corrupt, b"this is not an OpenEXR file at all").unwrap();
+        let e = read_exr(&corrupt).unwrap_err();
+        assert!(e.contains("corrupt.exr"), "{e}");
+        // Truncated valid file.
+        let p = tmp("trunc.exr");
+        write_exr(&p, &random_image(16, 16, 5)).unwrap();
+        let bytes = std::fs::read(&p).unwrap();
+        std::fs::write(&p, &bytes[..bytes.len() / 2]).unwrap();
+        assert!(read_exr(&p).is_err());
+        // A file without R, G, B.
+        let q = tmp("noRGB.exr");
+        let img = ExrImage::from_channels(
+            (2usize, 2usize),
+            AnyChannels::sort(SmallVec::from_vec(vec![AnyChannel::new(
+                "Y",
+                FlatSamples::F32(vec![1.0; 4]),
+            )])),
+        );
+        img.write().to_file(&q).unwrap();
+        let e = read_exr(&q).unwrap_err();
+        assert!(e.contains("R, G and B"), "{e}");
+        for f in [corrupt, p, q] {
+            std::fs::remove_file(f).ok();
+        }
+    }
+}

@@ -217,3 +217,293 @@ impl Film {
         Image { width: self.width, height: self.height, data }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::film::filter::{BoxFilter, GaussianFilter, TentFilter};
+    use crate::sampling::Pcg32;
+    use crate::Spectrum;
+    use glam::Vec2;
+
+    fn filters() -> [ReconstructionFilter; 4] {
+        [
+            BoxFilter::new().into(),
+            TentFilter::default().into(),
+            TentFilter::new(1.7).unwrap().into(),
+            GaussianFilter::default().into(),
+        ]
+    }
+
+    fn random_samples(w: u32, h: u32, n: usize, seed: u64) -> Vec<(Vec2, Spectrum)> {
+        let mut rng = Pcg32::new(seed, 3);
+        (0..n)
+            .map(|_| {
+                let p = Vec2::new(rng.next_f32() * w as f32, rng.next_f32() * h as f32);
+                let v = Spectrum::new(rng.next_f32(), rng.next_f32() * 5.0, rng.next_f32() * 0.1);
+                (p, v)
+            })
+            .collect()
+    }
+
+    /// Renders like a tiled renderer: each sample goes to the tile whose interior holds it.
+    fn render_tiled(film: &mut Film, samples: &[(Vec2, Spectrum)], tile: u32) {
+        let (tw, th) = (film.width.div_ceil(tile), film.height.div_ceil(tile));
+        for ty in 0..th {
+            for tx in 0..tw {
+                let off = UVec2::new(tx * tile, ty * tile);
+                let size = UVec2::new(tile.min(film.width - off.x), tile.min(film.height - off.y));
+                let mut b = film.create_block(off, size);
+                for &(p, v) in samples {
+                    let (ix, iy) = (p.x.floor() as u32, p.y.floor() as u32);
+                    if ix / tile == tx && iy / tile == ty {
+                        b.put(p, v);
+                    }
+                }
+                film.merge(&b);
+            }
+        }
+    }
+
+    fn assert_films_close(a: &Film, b: &Film) {
+        for y in 0..a.height {
+            for x in 0..a.width {
+                let (p, q) = (a.pixel(x, y), b.pixel(x, y));
+                let close = |u: f64, v: f64| (u - v).abs() <= 1e-12 * u.abs().max(v.abs()).max(1e-300);
+                assert!(close(p.w, q.w) && close(p.w2, q.w2), "({x},{y}) {p:?} vs {q:?}");
+                for c in 0..3 {
+                    assert!(close(p.wl[c], q.wl[c]) && close(p.wl2[c], q.wl2[c]), "({x},{y})");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn film_size_validation() {
+        let f = ReconstructionFilter::default();
+        assert!(Film::new(0, 10, f).is_err());
+        assert!(Film::new(10, 0, f).is_err());
+        assert!(Film::new(MAX_FILM_SIZE + 1, 2, f).unwrap_err().contains("too large"));
+        assert!(Film::new(1, 1, f).is_ok());
+        let d = Film::default();
+        assert_eq!((d.width, d.height), (768, 576));
+        assert!(matches!(d.filter, ReconstructionFilter::Gaussian(g) if g.stddev() == 0.5));
+        assert_eq!(d.component_format, ComponentFormat::Float16);
+        assert!(!d.sample_border);
+        assert_eq!(ComponentFormat::parse("float32"), Ok(ComponentFormat::Float32));
+        assert!(ComponentFormat::parse("uint8").is_err());
+    }
+
+    #[test]
+    fn tiled_merge_equals_single_block() {
+        for f in filters() {
+            let samples = random_samples(23, 17, 4000, 11);
+            let mut single = Film::new(23, 17, f).unwrap();
+            let mut b = single.create_block(UVec2::ZERO, single.size());
+            for &(p, v) in &samples {
+                b.put(p, v);
+            }
+            single.merge(&b);
+            // Blocks made without the film's clip keep pixels beyond the edges in their
+            // border; merge must clip them.
+            let mut unclipped = Film::new(23, 17, f).unwrap();
+            let mut b2 = ImageBlock::new(UVec2::ZERO, unclipped.size(), &f);
+            for &(p, v) in &samples {
+                b2.put(p, v);
+            }
+            unclipped.merge(&b2);
+            for tile in [8, 5, 1] {
+                let mut tiled = Film::new(23, 17, f).unwrap();
+                render_tiled(&mut tiled, &samples, tile);
+                assert_films_close(&tiled, &single);
+            }
+            assert_films_close(&unclipped, &single);
+            // Total weight equals the sum of the in-film filter weights, computed directly.
+            let r = f.radius();
+            let mut expect_w = 0.0f64;
+            for &(p, _) in &samples {
+                for y in 0..17 {
+                    for x in 0..23 {
+                        let (dx, dy) = (x as f32 + 0.5 - p.x, y as f32 + 0.5 - p.y);
+                        if f.is_box() {
+                            if x == p.x.floor() as i32 && y == p.y.floor() as i32 {
+                                expect_w += 1.0;
+                            }
+                        } else if dx.abs() < r && dy.abs() < r {
+                            expect_w += f.eval(dy) as f64 * f.eval(dx) as f64;
+                        }
+                    }
+                }
+            }
+            let total: f64 = single.data.iter().map(|p| p.w).sum();
+            assert!((total - expect_w).abs() <= 1e-9 * expect_w, "{}", f.plugin_name());
+        }
+    }
+
+    #[test]
+    fn constant_radiance_develops_exactly() {
+        let c = Spectrum::new(0.3, 1.7, 42.0);
+        for f in filters() {
+            let mut film = Film::new(9, 7, f).unwrap();
+            let mut rng = Pcg32::new(5, 9);
+            let mut b = film.create_block(UVec2::ZERO, film.size());
+            for _ in 0..2000 {
+                b.put(Vec2::new(rng.next_f32() * 9.0, rng.next_f32() * 7.0), c);
+            }
+            film.merge(&b);
+            let img = film.develop();
+            for y in 0..7 {
+                for x in 0..9 {
+                    assert!(film.pixel(x, y).w > 0.0, "pixel ({x},{y}) got no weight");
+                    let v = img.get(x, y);
+                    for k in 0..3 {
+                        assert!((v[k] - c[k]).abs() <= 1e-6 * c[k], "{} ({x},{y}) {v}", f.plugin_name());
+                    }
+                }
+            }
+        }
+        // Pixels without weight develop to 0.
+        let film = Film::new(3, 2, ReconstructionFilter::default()).unwrap();
+        assert!(film.develop().data.iter().all(|&v| v == 0.0));
+    }
+
+    #[test]
+    fn f64_accumulation_has_no_drift() {
+        const N: usize = 4_000_000;
+        let mut film = Film::new(1, 1, BoxFilter::new().into()).unwrap();
+        let mut b = film.create_block(UVec2::ZERO, UVec2::ONE);
+        let mut rng = Pcg32::new(17, 1);
+        // Every f32 in [0.5, 2) is an integer multiple of 2^-24, so the exact sum fits in u64.
+        let mut exact: u64 = 0;
+        let mut naive_f32 = 0.0f32;
+        for _ in 0..N {
+            let v = 1.1 + 1e-3 * (rng.next_f32() - 0.5);
+            exact += (v as f64 * 16_777_216.0) as u64;
+            naive_f32 += v;
+            b.put(Vec2::new(0.25, 0.75), Spectrum::splat(v));
+        }
+        film.merge(&b);
+        let exact_mean = exact as f64 / 16_777_216.0 / N as f64;
+        let got = film.develop().get(0, 0);
+        for k in 0..3 {
+            assert!(
+                (got[k] as f64 - exact_mean).abs() <= 0.6 * f32::EPSILON as f64 * exact_mean,
+                "{} vs {exact_mean}",
+                got[k]
+            );
+        }
+        // The f32 running sum that this guards against is visibly wrong.
+        let naive_mean = naive_f32 as f64 / N as f64;
+        assert!((naive_mean - exact_mean).abs() > 1e-3 * exact_mean, "{naive_mean}");
+    }
+
+    /// Mean and standard deviation of U[0,1): 1/2 and 1/√12; its kurtosis is 9/5.
+    const SIGMA_U: f64 = 0.288_675_134_594_812_9;
+    const KURT_U: f64 = 1.8;
+
+    #[test]
+    fn stderr_of_box_pixels_matches_sigma_over_sqrt_n() {
+        const N: usize = 10_000;
+        let (w, h) = (4u32, 4u32);
+        let mut film = Film::new(w, h, BoxFilter::new().into()).unwrap();
+        let mut b = film.create_block(UVec2::ZERO, film.size());
+        let mut rng = Pcg32::new(1234, 5);
+        for y in 0..h {
+            for x in 0..w {
+                for _ in 0..N {
+                    let p = Vec2::new(x as f32 + rng.next_f32(), y as f32 + rng.next_f32());
+                    b.put(p, Spectrum::new(rng.next_f32(), rng.next_f32(), rng.next_f32()));
+                }
+            }
+        }
+        film.merge(&b);
+        let se = film.develop_stderr();
+        let expect = SIGMA_U / (N as f64).sqrt();
+        // Relative s.d. of a sample standard deviation: ≈ ½·√((κ − 1)/n) (delta method),
+        // with the f32 image rounding far below it.
+        let rel_sd = 0.5 * ((KURT_U - 1.0) / N as f64).sqrt();
+        let mut sum_rel = 0.0;
+        for &v in &se.data {
+            let rel = v as f64 / expect - 1.0;
+            assert!(rel.abs() < 5.0 * rel_sd, "stderr {v} vs {expect}");
+            sum_rel += rel;
+        }
+        let m = se.data.len() as f64;
+        assert!((sum_rel / m).abs() < 5.0 * rel_sd / m.sqrt(), "mean bias {}", sum_rel / m);
+    }
+
+    #[test]
+    fn stderr_of_weighted_pixels() {
+        // Gaussian splatting: values i.i.d. U[0,1) independent of position; given the weights,
+        // Var(weighted mean) = σ²·W₂/W₁².
+        let mut film = Film::new(6, 6, GaussianFilter::default().into()).unwrap();
+        let mut b = film.create_block(UVec2::ZERO, film.size());
+        let mut rng = Pcg32::new(99, 2);
+        for _ in 0..200_000 {
+            let p = Vec2::new(rng.next_f32() * 6.0, rng.next_f32() * 6.0);
+            b.put(p, Spectrum::new(rng.next_f32(), rng.next_f32(), rng.next_f32()));
+        }
+        film.merge(&b);
+        let se = film.develop_stderr();
+        for y in 0..6 {
+            for x in 0..6 {
+                let p = film.pixel(x, y);
+                let n_eff = p.w * p.w / p.w2;
+                let expect = SIGMA_U * p.w2.sqrt() / p.w;
+                let rel_sd = 0.5 * ((KURT_U - 1.0) / n_eff).sqrt();
+                let v = se.get(x, y);
+                for k in 0..3 {
+                    let rel = v[k] as f64 / expect - 1.0;
+                    assert!(rel.abs() < 6.0 * rel_sd, "({x},{y}) {} vs {expect}", v[k]);
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn stderr_degenerate_pixels_are_zero() {
+        let mut film = Film::new(2, 1, BoxFilter::new().into()).unwrap();
+        let mut b = film.create_block(UVec2::ZERO, film.size());
+        b.put(Vec2::new(0.5, 0.5), Spectrum::new(3.0, 1.0, 2.0));
+        film.merge(&b);
+        let se = film.develop_stderr();
+        assert_eq!(se.get(0, 0), Spectrum::ZERO); // one sample: unknown, reported 0
+        assert_eq!(se.get(1, 0), Spectrum::ZERO); // no sample
+        // Identical samples: zero variance (never negative or NaN from round-off).
+        let mut b = film.create_block(UVec2::ZERO, film.size());
+        for _ in 0..1000 {
+            b.put(Vec2::new(1.5, 0.5), Spectrum::splat(0.1));
+        }
+        film.merge(&b);
+        let v = film.develop_stderr().get(1, 0);
+        assert!(v.is_finite() && v.cmpge(Spectrum::ZERO).all() && v.max_element() < 1e-8);
+    }
+
+    #[test]
+    fn accumulate_and_clear() {
+        let f = ReconstructionFilter::default();
+        let samples = random_samples(10, 8, 3000, 21);
+        let mut all = Film::new(10, 8, f).unwrap();
+        render_tiled(&mut all, &samples, 4);
+        let mut a = Film::new(10, 8, f).unwrap();
+        let mut b = Film::new(10, 8, f).unwrap();
+        render_tiled(&mut a, &samples[..1000], 4);
+        render_tiled(&mut b, &samples[1000..], 3);
+        a.accumulate(&b).unwrap();
+        assert_films_close(&a, &all);
+        assert!(a.accumulate(&Film::new(10, 9, f).unwrap()).is_err());
+        a.clear();
+        assert!(a.data.iter().all(|p| *p == PixelAccum::default()));
+    }
+
+    #[test]
+    fn dropped_samples_are_counted_not_merged() {
+        let mut film = Film::new(4, 4, ReconstructionFilter::default()).unwrap();
+        let mut b = film.create_block(UVec2::ZERO, film.size());
+        b.put(Vec2::new(1.0, 1.0), Spectrum::new(f32::NAN, 0.0, 0.0));
+        b.put(Vec2::new(1.0, 1.0), Spectrum::new(0.0, f32::NEG_INFINITY, 0.0));
+        film.merge(&b);
+        assert_eq!(film.dropped(), 2);
+        assert!(film.develop().data.iter().all(|v| *v == 0.0));
+    }
+}

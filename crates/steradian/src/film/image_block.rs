@@ -25,10 +25,10 @@ impl PixelAccum {
     /// Adds one weighted sample.
     #[inline(always)]
     pub fn add_sample(&mut self, w: f64, l: [f64; 3]) {
-        for c in 0..3 {
-            let wl = w * l[c];
-            self.wl[c] += wl;
-            self.wl2[c] += wl * l[c];
+        for ((s1, s2), lc) in self.wl.iter_mut().zip(self.wl2.iter_mut()).zip(l) {
+            let wl = w * lc;
+            *s1 += wl;
+            *s2 += wl * lc;
         }
         self.w += w;
         self.w2 += w * w;
@@ -247,5 +247,105 @@ impl ImageBlock {
             *wk = if d.abs() < r { self.filter.eval(d) } else { 0.0 };
         }
         Some(((lo - self.origin[axis]) as usize, n))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::film::filter::{BoxFilter, GaussianFilter, TentFilter};
+
+    /// Checks that a block holding one sample `l` at `pos` has exactly the expected weights in
+    /// every stored pixel: `w(dx)·w(dy)` where both |d| < r, untouched elsewhere.
+    fn check_single_splat(filter: ReconstructionFilter, pos: Vec2, expect_touched: usize) {
+        let l = Spectrum::new(1.0, 2.0, 3.0);
+        let mut b = ImageBlock::new(UVec2::new(0, 0), UVec2::new(12, 10), &filter);
+        b.put(pos, l);
+        let (o, s) = b.storage_rect();
+        let r = filter.radius();
+        let mut touched = 0;
+        for y in o[1]..o[1] + s[1] {
+            for x in o[0]..o[0] + s[0] {
+                let p = b.pixel(x, y).unwrap();
+                let dx = x as f32 + 0.5 - pos.x;
+                let dy = y as f32 + 0.5 - pos.y;
+                let inside = if filter.is_box() {
+                    x == pos.x.floor() as i64 && y == pos.y.floor() as i64
+                } else {
+                    dx.abs() < r && dy.abs() < r
+                };
+                if inside && x >= 0 && y >= 0 {
+                    touched += 1;
+                    let w = if filter.is_box() {
+                        1.0
+                    } else {
+                        filter.eval(dy) as f64 * filter.eval(dx) as f64
+                    };
+                    assert!(w > 0.0);
+                    assert!((p.w - w).abs() <= 1e-15, "({x},{y}) {} vs {w}", p.w);
+                    assert!((p.w2 - w * w).abs() <= 1e-15);
+                    for c in 0..3 {
+                        let lc = l[c] as f64;
+                        assert!((p.wl[c] - w * lc).abs() <= 1e-14);
+                        assert!((p.wl2[c] - w * lc * lc).abs() <= 1e-14);
+                    }
+                } else {
+                    assert_eq!(*p, PixelAccum::default(), "pixel ({x},{y}) was touched");
+                }
+            }
+        }
+        assert_eq!(touched, expect_touched, "{} at {pos}", filter.plugin_name());
+    }
+
+    #[test]
+    fn gaussian_splat_footprint() {
+        let g = ReconstructionFilter::from(GaussianFilter::default());
+        // x centres within 2 of 5.3: 3.5 .. 6.5 (4 pixels); y within 2 of 4.8: 2.5 .. 6.5 (4).
+        check_single_splat(g, Vec2::new(5.3, 4.8), 16);
+        // A sample on a pixel centre: 3 pixels each way (the ones at distance 2 have w = 0 and
+        // are excluded by the strict test).
+        check_single_splat(g, Vec2::new(5.5, 4.5), 9);
+        // Near the top-left corner: negative pixels are never written.
+        check_single_splat(g, Vec2::new(0.2, 0.7), 2 * 3);
+    }
+
+    #[test]
+    fn tent_and_box_splat_footprint() {
+        check_single_splat(TentFilter::default().into(), Vec2::new(5.3, 4.8), 4);
+        check_single_splat(TentFilter::new(1.6).unwrap().into(), Vec2::new(5.3, 4.8), 9);
+        check_single_splat(BoxFilter::new().into(), Vec2::new(5.3, 4.8), 1);
+        check_single_splat(BoxFilter::new().into(), Vec2::new(0.0, 9.999), 1);
+    }
+
+    #[test]
+    fn out_of_bounds_samples_are_safe() {
+        for f in [
+            ReconstructionFilter::from(BoxFilter::new()),
+            TentFilter::new(2.5).unwrap().into(),
+            GaussianFilter::default().into(),
+        ] {
+            let mut b = ImageBlock::new(UVec2::new(4, 4), UVec2::new(3, 2), &f);
+            for p in [
+                Vec2::new(-100.0, -100.0),
+                Vec2::new(-0.5, 5.0),
+                Vec2::new(1e9, 5.0),
+                Vec2::new(5.0, -1e9),
+                Vec2::new(0.0, 0.0),
+                Vec2::new(30.0, 30.0),
+            ] {
+                b.put(p, Spectrum::ONE);
+            }
+            assert!(b.pixels().iter().all(|p| p.w == 0.0), "{}", f.plugin_name());
+            b.put(Vec2::new(f32::NAN, 5.0), Spectrum::ONE);
+            b.put(Vec2::new(5.0, 5.0), Spectrum::new(f32::INFINITY, 0.0, 0.0));
+            b.put(Vec2::new(5.0, 5.0), Spectrum::new(0.0, f32::NAN, 0.0));
+            assert_eq!(b.dropped(), 3);
+            assert!(b.pixels().iter().all(|p| p.w == 0.0));
+            b.put(Vec2::new(5.2, 5.7), Spectrum::ONE);
+            assert!(b.pixels().iter().any(|p| p.w > 0.0));
+            b.clear();
+            assert!(b.pixels().iter().all(|p| *p == PixelAccum::default()));
+            assert_eq!(b.dropped(), 0);
+        }
     }
 }

@@ -13,9 +13,7 @@ use super::image::Image;
 /// sRGB-encodes one linear value (after clamping to [0, 1]) to 8 bits, rounding to nearest.
 #[inline]
 pub fn srgb_encode_u8(linear: f32) -> u8 {
-    // `max` then `min` maps NaN to 0.
-    let x = linear.max(0.0).min(1.0);
-    let x = if x.is_nan() { 0.0 } else { x };
+    let x = if linear.is_nan() { 0.0 } else { linear.clamp(0.0, 1.0) };
     let v = if x <= 0.0031308 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 };
     (v * 255.0).round().clamp(0.0, 255.0) as u8
 }

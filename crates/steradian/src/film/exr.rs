@@ -48,16 +48,18 @@ pub fn write_exr_layers_as(
             )));
         }
         for (c, ch) in ["R", "G", "B"].iter().enumerate() {
-            let name = if prefix.is_empty() { ch.to_string() } else { format!("{prefix}.{ch}") };
+            let name = if prefix.is_empty() {
+                ch.to_string()
+            } else {
+                format!("{prefix}.{ch}")
+            };
             if names.contains(&name) {
                 return Err(err(format!("duplicate channel {name}")));
             }
             let values = img.data.iter().skip(c).step_by(3).copied();
             let samples = match format {
                 ComponentFormat::Float32 => FlatSamples::F32(values.collect()),
-                ComponentFormat::Float16 => {
-                    FlatSamples::F16(values.map(f16::from_f32).collect())
-                }
+                ComponentFormat::Float16 => FlatSamples::F16(values.map(f16::from_f32).collect()),
             };
             channels.push(AnyChannel::new(name.as_str(), samples));
             names.push(name);
@@ -71,7 +73,8 @@ pub fn write_exr_layers_as(
 /// EXR file. The first layer (part) holding all three is used; an error if none does.
 pub fn read_exr(path: &Path) -> Result<Image, String> {
     let err = |msg: String| format!("cannot read EXR {}: {msg}", path.display());
-    let image = ::exr::prelude::read_all_flat_layers_from_file(path).map_err(|e| err(e.to_string()))?;
+    let image =
+        ::exr::prelude::read_all_flat_layers_from_file(path).map_err(|e| err(e.to_string()))?;
     for layer in &image.layer_data {
         let find = |name: &str| layer.channel_data.list.iter().find(|c| c.name.eq(name));
         let (Some(r), Some(g), Some(b)) = (find("R"), find("G"), find("B")) else {

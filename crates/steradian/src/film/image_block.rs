@@ -207,8 +207,12 @@ impl ImageBlock {
 
         let mut wx = [0.0f32; MAX_FILTER_TAPS];
         let mut wy = [0.0f32; MAX_FILTER_TAPS];
-        let Some((x0, nx)) = self.axis_weights(pos.x, 0, &mut wx) else { return };
-        let Some((y0, ny)) = self.axis_weights(pos.y, 1, &mut wy) else { return };
+        let Some((x0, nx)) = self.axis_weights(pos.x, 0, &mut wx) else {
+            return;
+        };
+        let Some((y0, ny)) = self.axis_weights(pos.y, 1, &mut wy) else {
+            return;
+        };
         let stride = self.stride[0] as usize;
         for (j, &wyj) in wy[..ny].iter().enumerate() {
             if wyj == 0.0 {
@@ -227,7 +231,12 @@ impl ImageBlock {
     /// Weights along one axis for the stored, writable pixels whose centres lie strictly within
     /// the radius of `p`. Returns (first local index, count), `None` when empty.
     #[inline(always)]
-    fn axis_weights(&self, p: f32, axis: usize, w: &mut [f32; MAX_FILTER_TAPS]) -> Option<(usize, usize)> {
+    fn axis_weights(
+        &self,
+        p: f32,
+        axis: usize,
+        w: &mut [f32; MAX_FILTER_TAPS],
+    ) -> Option<(usize, usize)> {
         let r = self.filter.radius();
         // Pixel j qualifies when |j + 0.5 − p| < r, i.e. p − 0.5 − r < j < p − 0.5 + r.
         let lo = ((p - 0.5 - r).floor() as i64 + 1)
@@ -244,7 +253,11 @@ impl ImageBlock {
         let n = n.min(MAX_FILTER_TAPS);
         for (k, wk) in w[..n].iter_mut().enumerate() {
             let d = (lo + k as i64) as f32 + 0.5 - p;
-            *wk = if d.abs() < r { self.filter.eval(d) } else { 0.0 };
+            *wk = if d.abs() < r {
+                self.filter.eval(d)
+            } else {
+                0.0
+            };
         }
         Some(((lo - self.origin[axis]) as usize, n))
     }

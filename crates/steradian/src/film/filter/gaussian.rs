@@ -45,7 +45,12 @@ impl GaussianFilter {
         check_radius("gaussian", "4·stddev", radius)?;
         let alpha = 1.0 / (2.0 * stddev * stddev);
         let bias = (-alpha * radius * radius).exp();
-        Ok(GaussianFilter { stddev, radius, alpha, bias })
+        Ok(GaussianFilter {
+            stddev,
+            radius,
+            alpha,
+            bias,
+        })
     }
 
     /// Standard deviation σ in pixels.

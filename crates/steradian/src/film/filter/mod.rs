@@ -143,7 +143,7 @@ mod tests {
         assert_eq!(g.radius(), 2.0);
         let sigma = 0.5f64;
         let shift = (-(2.0f64 * 2.0) / (2.0 * sigma * sigma)).exp(); // exp(−8)
-        // At 0: 1 − exp(−8).
+                                                                     // At 0: 1 − exp(−8).
         assert!((g.eval(0.0) as f64 - (1.0 - shift)).abs() < 1e-6);
         // At 1σ: exp(−1/2) − exp(−8).
         assert!((g.eval(0.5) as f64 - ((-0.5f64).exp() - shift)).abs() < 1e-6);
@@ -206,10 +206,22 @@ mod tests {
 
     #[test]
     fn border_sizes() {
-        assert_eq!(ReconstructionFilter::from(BoxFilter::new()).border_size(), 0);
-        assert_eq!(ReconstructionFilter::from(TentFilter::default()).border_size(), 1);
+        assert_eq!(
+            ReconstructionFilter::from(BoxFilter::new()).border_size(),
+            0
+        );
+        assert_eq!(
+            ReconstructionFilter::from(TentFilter::default()).border_size(),
+            1
+        );
         assert_eq!(ReconstructionFilter::default().border_size(), 2);
-        assert_eq!(ReconstructionFilter::from(TentFilter::new(1.5).unwrap()).border_size(), 1);
-        assert_eq!(ReconstructionFilter::from(TentFilter::new(1.2).unwrap()).border_size(), 1);
+        assert_eq!(
+            ReconstructionFilter::from(TentFilter::new(1.5).unwrap()).border_size(),
+            1
+        );
+        assert_eq!(
+            ReconstructionFilter::from(TentFilter::new(1.2).unwrap()).border_size(),
+            1
+        );
     }
 }

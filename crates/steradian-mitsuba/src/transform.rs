@@ -59,7 +59,7 @@ pub(crate) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> 
             let origin = vec3_attr(attrs, "origin")?;
             let target = vec3_attr(attrs, "target")?;
             let dir = target - origin;
-            if !(dir.length_squared() > 0.0) {
+            if dir.length_squared() == 0.0 {
                 return Err(attrs.error("<lookat> origin and target are the same point"));
             }
             let up = match attrs.get("up") {

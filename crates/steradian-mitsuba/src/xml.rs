@@ -398,7 +398,7 @@ impl Parser {
     /// Attributes of `el` with `$name` parameters substituted (longest names first, as
     /// Mitsuba does); a `$` left over is an undefined parameter.
     fn attrs(&mut self, src: &Src, el: roxmltree::Node, elem: &str) -> Result<Attrs, LoadError> {
-        self.params.sort_by(|a, b| b.name.len().cmp(&a.name.len()));
+        self.params.sort_by_key(|p| std::cmp::Reverse(p.name.len()));
         let mut list = Vec::new();
         for a in el.attributes() {
             let pos = src.pos(a.range().start);

@@ -140,8 +140,7 @@ fn one_transform(ops: &str) -> steradian::geometry::Transform {
         r#"<scene version="3.0.0"><shape type="sphere"><transform name="to_world">{ops}</transform></shape></scene>"#
     );
     let s = parse_string(&xml, Path::new("."), &[]).unwrap();
-    let t = s.children[0].node.props.get_transform("to_world").unwrap().unwrap();
-    t
+    s.children[0].node.props.get_transform("to_world").unwrap().unwrap()
 }
 
 #[test]

@@ -237,3 +237,6 @@ pub(crate) fn azimuth01(x: f32, y: f32) -> f32 {
 
 #[cfg(test)]
 pub(crate) mod test_util;
+
+#[cfg(test)]
+mod tests;

@@ -240,3 +240,6 @@ pub(crate) mod test_util;
 
 #[cfg(test)]
 mod tests;
+
+#[cfg(test)]
+mod io_tests;

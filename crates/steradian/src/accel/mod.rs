@@ -6,3 +6,6 @@ mod triangle;
 
 pub use bvh::Accel;
 pub use triangle::intersect_triangle;
+
+#[cfg(test)]
+mod tests;

@@ -12,7 +12,7 @@
 use glam::Vec3;
 
 use crate::geometry::Aabb;
-use crate::shape::Shape;
+use crate::shape::{is_positive, Shape};
 
 /// A flattened BVH node (32 bytes).
 #[derive(Clone, Copy, Debug)]
@@ -147,7 +147,7 @@ fn sah_split(items: &mut [BuildPrim], bounds: &Aabb, cbounds: &Aabb) -> Option<u
     let extent = cbounds.extent();
     let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, split bin)
     for axis in 0..3 {
-        if !(extent[axis] > 0.0) {
+        if !is_positive(extent[axis]) {
             continue;
         }
         let scale = BINS as f32 / extent[axis];
@@ -180,7 +180,7 @@ fn sah_split(items: &mut [BuildPrim], bounds: &Aabb, cbounds: &Aabb) -> Option<u
                 continue;
             }
             let cost = acc.surface_area() * nl as f32 + right_area[i + 1] * nr as f32;
-            if best.map_or(true, |(c, _, _)| cost < c) {
+            if best.is_none() || best.is_some_and(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, i));
             }
         }

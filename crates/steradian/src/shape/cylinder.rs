@@ -25,7 +25,7 @@ use std::f32::consts::PI;
 
 use glam::{Mat4, Vec2, Vec3};
 
-use super::{azimuth01, PositionSample, ShapeError};
+use super::{azimuth01, is_positive, is_positive_finite, PositionSample, ShapeError};
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
 
 #[derive(Clone, Debug)]
@@ -39,10 +39,10 @@ impl Cylinder {
     pub fn new(p0: Vec3, p1: Vec3, radius: f32, to_world: &Transform, flip_normals: bool) -> Result<Cylinder, ShapeError> {
         let d = p1 - p0;
         let len = d.length();
-        if !(len > 0.0) || !len.is_finite() {
+        if !is_positive_finite(len) {
             return Err(ShapeError("cylinder: p0 and p1 must be distinct finite points".into()));
         }
-        if !(radius > 0.0) || !radius.is_finite() {
+        if !is_positive_finite(radius) {
             return Err(ShapeError(format!("cylinder: the radius must be positive (got {radius})")));
         }
         let f = Frame::from_normal(d / len);
@@ -69,7 +69,7 @@ impl Cylinder {
         let o = self.object_to_world.inv.transform_point3(ray.o).as_dvec3();
         let d = self.object_to_world.inv.transform_vector3(ray.d).as_dvec3();
         let a = d.x * d.x + d.y * d.y;
-        if !(a > 0.0) {
+        if !is_positive(a) {
             return None;
         }
         let b = o.x * d.x + o.y * d.y; // half of the linear coefficient

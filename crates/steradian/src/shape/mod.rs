@@ -193,11 +193,11 @@ impl Shape {
 pub(crate) fn area_to_solid_angle(pdf_area: f32, reference: Vec3, p: Vec3, n: Vec3) -> f32 {
     let d = p - reference;
     let dist2 = d.length_squared();
-    if !(dist2 > 0.0) {
+    if !is_positive(dist2) {
         return 0.0;
     }
     let cos = n.dot(d).abs() / dist2.sqrt();
-    if !(cos > 0.0) {
+    if !is_positive(cos) {
         return 0.0;
     }
     let pdf = pdf_area * dist2 / cos;
@@ -212,14 +212,26 @@ pub(crate) fn area_to_solid_angle(pdf_area: f32, reference: Vec3, p: Vec3, n: Ve
 pub(crate) fn direction_from_position(reference: Vec3, ps: &PositionSample) -> Option<DirectionSample> {
     let d = ps.p - reference;
     let dist = d.length();
-    if !(dist > 0.0) || !dist.is_finite() {
+    if !is_positive_finite(dist) {
         return None;
     }
     let pdf = area_to_solid_angle(ps.pdf_area, reference, ps.p, ps.n);
-    if !(pdf > 0.0) || !pdf.is_finite() {
+    if !is_positive_finite(pdf) {
         return None;
     }
     Some(DirectionSample { p: ps.p, n: ps.n, uv: ps.uv, wi: d / dist, dist, pdf })
+}
+
+/// `x > 0`, false for NaN (written as a function so that NaN-rejecting tests read clearly).
+#[inline]
+pub(crate) fn is_positive<T: PartialOrd + Default>(x: T) -> bool {
+    x > T::default()
+}
+
+/// `0 < x < ∞`, false for NaN.
+#[inline]
+pub(crate) fn is_positive_finite(x: f32) -> bool {
+    x.is_finite() && x > 0.0
 }
 
 /// φ / 2π in [0, 1) for a local point.

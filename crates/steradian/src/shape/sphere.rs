@@ -23,7 +23,7 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3};
 
-use super::{area_to_solid_angle, azimuth01, DirectionSample, PositionSample};
+use super::{area_to_solid_angle, azimuth01, is_positive_finite, DirectionSample, PositionSample};
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
 use crate::sampling::warp;
 
@@ -172,7 +172,7 @@ impl Sphere {
         let sin2_t = (local.x as f64).powi(2) + (local.y as f64).powi(2);
         let (dc64, r64) = (dc as f64, self.radius as f64);
         let dist = (dc64 * cos_t - (r64 * r64 - dc64 * dc64 * sin2_t).max(0.0).sqrt()) as f32;
-        if !(dist > 0.0) || !dist.is_finite() {
+        if !is_positive_finite(dist) {
             return None;
         }
         let p = reference + wi * dist;

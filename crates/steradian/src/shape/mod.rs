@@ -1,1 +1,257 @@
-//! (in progress)
+//! Shapes: the surfaces light interacts with.
+//!
+//! One file per Mitsuba 3 shape plugin (`obj`, `ply`, `cube`, `rectangle`, `disk`, `sphere`,
+//! `cylinder`). [`Shape`] is a closed enum: every method is one `match`, no dynamic dispatch.
+//!
+//! Conventions used by every shape:
+//! - `n` is the shape's own geometric normal (outward / front side), never flipped towards a
+//!   ray; `flip_normals` flips it (and the shading normal).
+//! - Area sampling is uniform: `pdf_area = 1 / area` (1/m²).
+//! - Solid-angle densities (1/sr) are obtained from area densities as
+//!   `pdf = pdf_area · dist² / |cos θ_light|` (0 when the cosine is 0); the sphere seen from
+//!   outside samples the cone of directions it subtends instead.
+
+use std::fmt;
+
+use glam::{Vec2, Vec3};
+
+use crate::geometry::{Aabb, PreliminaryHit, Ray, SurfaceInteraction};
+
+mod cube;
+mod cylinder;
+mod disk;
+mod mesh;
+mod obj;
+mod ply;
+mod rectangle;
+mod sphere;
+
+pub use cube::cube;
+pub use cylinder::Cylinder;
+pub use disk::Disk;
+pub use mesh::{Mesh, MeshData};
+pub use obj::read_obj;
+pub use ply::read_ply;
+pub use rectangle::Rectangle;
+pub use sphere::Sphere;
+
+/// Every shape steradian knows.
+#[derive(Clone, Debug)]
+pub enum Shape {
+    Mesh(Mesh),
+    Rectangle(Rectangle),
+    Disk(Disk),
+    Sphere(Sphere),
+    Cylinder(Cylinder),
+}
+
+/// A point sampled on a surface, uniformly by area.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct PositionSample {
+    /// Position, m.
+    pub p: Vec3,
+    /// Geometric normal (the shape's own orientation), unit.
+    pub n: Vec3,
+    /// Surface coordinates.
+    pub uv: Vec2,
+    /// Density per unit area, 1/m².
+    pub pdf_area: f32,
+}
+
+/// A point on a surface sampled as seen from a reference point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DirectionSample {
+    /// Position, m.
+    pub p: Vec3,
+    /// Geometric normal (the shape's own orientation), unit.
+    pub n: Vec3,
+    /// Surface coordinates.
+    pub uv: Vec2,
+    /// Unit direction from the reference point towards `p`.
+    pub wi: Vec3,
+    /// Distance from the reference point to `p`, m.
+    pub dist: f32,
+    /// Density per unit solid angle seen from the reference point, 1/sr.
+    pub pdf: f32,
+}
+
+/// Why a shape could not be built. The message only; the scene loader adds file and line.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ShapeError(pub String);
+
+impl fmt::Display for ShapeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for ShapeError {}
+
+impl Shape {
+    /// World-space bounds.
+    pub fn bounds(&self) -> Aabb {
+        match self {
+            Shape::Mesh(s) => s.bounds(),
+            Shape::Rectangle(s) => s.bounds(),
+            Shape::Disk(s) => s.bounds(),
+            Shape::Sphere(s) => s.bounds(),
+            Shape::Cylinder(s) => s.bounds(),
+        }
+    }
+
+    /// Number of primitives: triangles for meshes, 1 for analytic shapes.
+    pub fn prim_count(&self) -> u32 {
+        match self {
+            Shape::Mesh(s) => s.indices.len() as u32,
+            _ => 1,
+        }
+    }
+
+    /// World-space bounds of one primitive.
+    pub fn prim_bounds(&self, prim: u32) -> Aabb {
+        match self {
+            Shape::Mesh(s) => s.prim_bounds(prim),
+            _ => self.bounds(),
+        }
+    }
+
+    /// Ray–primitive test: `(t, uv)` with `0 < t < ray.t_max`. `uv` holds the triangle
+    /// barycentrics (b1, b2) for meshes and the surface coordinates for analytic shapes.
+    #[inline]
+    pub fn intersect_prim(&self, prim: u32, ray: &Ray) -> Option<(f32, Vec2)> {
+        match self {
+            Shape::Mesh(s) => s.intersect_prim(prim, ray),
+            Shape::Rectangle(s) => s.intersect(ray),
+            Shape::Disk(s) => s.intersect(ray),
+            Shape::Sphere(s) => s.intersect(ray),
+            Shape::Cylinder(s) => s.intersect(ray),
+        }
+    }
+
+    /// Full surface data at a hit found by [`Shape::intersect_prim`].
+    pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
+        match self {
+            Shape::Mesh(s) => s.interaction(ray, hit),
+            Shape::Rectangle(s) => s.interaction(ray, hit),
+            Shape::Disk(s) => s.interaction(ray, hit),
+            Shape::Sphere(s) => s.interaction(ray, hit),
+            Shape::Cylinder(s) => s.interaction(ray, hit),
+        }
+    }
+
+    /// Surface area, m².
+    pub fn surface_area(&self) -> f32 {
+        match self {
+            Shape::Mesh(s) => s.surface_area(),
+            Shape::Rectangle(s) => s.surface_area(),
+            Shape::Disk(s) => s.surface_area(),
+            Shape::Sphere(s) => s.surface_area(),
+            Shape::Cylinder(s) => s.surface_area(),
+        }
+    }
+
+    /// A point uniformly distributed by area; `pdf_area = 1 / area`.
+    pub fn sample_position(&self, u: Vec2) -> PositionSample {
+        match self {
+            Shape::Mesh(s) => s.sample_position(u),
+            Shape::Rectangle(s) => s.sample_position(u),
+            Shape::Disk(s) => s.sample_position(u),
+            Shape::Sphere(s) => s.sample_position(u),
+            Shape::Cylinder(s) => s.sample_position(u),
+        }
+    }
+
+    /// A point on the surface as seen from `reference`, with its density per solid angle.
+    /// `None` when that density would be 0 or not finite.
+    pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
+        match self {
+            Shape::Sphere(s) => s.sample_direction(reference, u),
+            _ => direction_from_position(reference, &self.sample_position(u)),
+        }
+    }
+
+    /// The density per solid angle (1/sr) that [`Shape::sample_direction`] gives for the surface
+    /// point `p` with geometric normal `n`, seen from `reference`.
+    pub fn pdf_direction(&self, reference: Vec3, p: Vec3, n: Vec3) -> f32 {
+        match self {
+            Shape::Sphere(s) => s.pdf_direction(reference, p, n),
+            _ => {
+                let area = self.surface_area();
+                if area > 0.0 {
+                    area_to_solid_angle(1.0 / area, reference, p, n)
+                } else {
+                    0.0
+                }
+            }
+        }
+    }
+}
+
+/// Converts an area density at `p` (normal `n`) to a solid-angle density seen from
+/// `reference`: `pdf_area · dist² / |cos θ|`, 0 when the cosine is 0 or the result is not finite.
+#[inline]
+pub(crate) fn area_to_solid_angle(pdf_area: f32, reference: Vec3, p: Vec3, n: Vec3) -> f32 {
+    let d = p - reference;
+    let dist2 = d.length_squared();
+    if !is_positive(dist2) {
+        return 0.0;
+    }
+    let cos = n.dot(d).abs() / dist2.sqrt();
+    if !is_positive(cos) {
+        return 0.0;
+    }
+    let pdf = pdf_area * dist2 / cos;
+    if pdf.is_finite() {
+        pdf
+    } else {
+        0.0
+    }
+}
+
+/// Turns an area sample into a direction sample seen from `reference`.
+pub(crate) fn direction_from_position(reference: Vec3, ps: &PositionSample) -> Option<DirectionSample> {
+    let d = ps.p - reference;
+    let dist = d.length();
+    if !is_positive_finite(dist) {
+        return None;
+    }
+    let pdf = area_to_solid_angle(ps.pdf_area, reference, ps.p, ps.n);
+    if !is_positive_finite(pdf) {
+        return None;
+    }
+    Some(DirectionSample { p: ps.p, n: ps.n, uv: ps.uv, wi: d / dist, dist, pdf })
+}
+
+/// `x > 0`, false for NaN (written as a function so that NaN-rejecting tests read clearly).
+#[inline]
+pub(crate) fn is_positive<T: PartialOrd + Default>(x: T) -> bool {
+    x > T::default()
+}
+
+/// `0 < x < ∞`, false for NaN.
+#[inline]
+pub(crate) fn is_positive_finite(x: f32) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+/// φ / 2π in [0, 1) for a local point.
+#[inline]
+pub(crate) fn azimuth01(x: f32, y: f32) -> f32 {
+    let mut v = y.atan2(x) * (0.5 * std::f32::consts::FRAC_1_PI);
+    if v < 0.0 {
+        v += 1.0;
+    }
+    if v >= 1.0 {
+        v = 0.0;
+    }
+    v
+}
+
+#[cfg(test)]
+pub(crate) mod test_util;
+
+#[cfg(test)]
+mod tests;
+
+#[cfg(test)]
+mod io_tests;

@@ -1,0 +1,264 @@
+//! Triangle meshes: the common representation behind `obj`, `ply` and `cube`.
+//!
+//! Vertices are stored in world space. The geometric normal of a triangle is
+//! `normalize((p1 − p0) × (p2 − p0))` (negated by `flip_normals`). Shading normals are the
+//! interpolated vertex normals (the file's, transformed with the inverse transpose, or, when
+//! the file has none and `face_normals` is false, Mitsuba's smooth angle-weighted vertex
+//! normals); with `face_normals` the shading normal is the geometric normal (flat shading).
+//! Surface coordinates are the interpolated vertex uvs when present, else the barycentrics
+//! (b1, b2), as in Mitsuba.
+
+use glam::{Vec2, Vec3};
+
+use super::{PositionSample, ShapeError};
+use crate::accel::intersect_triangle;
+use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
+use crate::sampling::warp;
+
+/// Mesh data as read from a file (object space, before `to_world`).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct MeshData {
+    pub positions: Vec<Vec3>,
+    pub normals: Option<Vec<Vec3>>,
+    pub uvs: Option<Vec<Vec2>>,
+    pub indices: Vec<[u32; 3]>,
+}
+
+/// A world-space triangle mesh.
+#[derive(Clone, Debug)]
+pub struct Mesh {
+    /// World-space vertex positions, m.
+    pub positions: Vec<Vec3>,
+    /// World-space unit vertex normals (already flipped by `flip_normals`); `None` for flat shading.
+    pub normals: Option<Vec<Vec3>>,
+    /// Vertex surface coordinates.
+    pub uvs: Option<Vec<Vec2>>,
+    /// Triangles (vertex indices, counter-clockwise around the front normal).
+    pub indices: Vec<[u32; 3]>,
+    flip_normals: bool,
+    area: f32,
+    /// Cumulative normalised triangle areas (last entry 1); empty when the area is 0.
+    cdf: Vec<f32>,
+}
+
+impl Mesh {
+    /// Builds a world-space mesh from object-space data.
+    ///
+    /// Fails when an index is out of range, a position is not finite, or the normal/uv arrays
+    /// do not have one entry per vertex.
+    pub fn new(
+        positions: Vec<Vec3>,
+        normals: Option<Vec<Vec3>>,
+        uvs: Option<Vec<Vec2>>,
+        indices: Vec<[u32; 3]>,
+        to_world: &Transform,
+        flip_normals: bool,
+        face_normals: bool,
+    ) -> Result<Mesh, ShapeError> {
+        let nv = positions.len();
+        if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(ShapeError(format!("mesh vertex {i} has a non-finite position {}", positions[i])));
+        }
+        if let Some(n) = &normals {
+            if n.len() != nv {
+                return Err(ShapeError(format!("mesh has {} normals for {nv} vertices", n.len())));
+            }
+        }
+        if let Some(uv) = &uvs {
+            if uv.len() != nv {
+                return Err(ShapeError(format!("mesh has {} texture coordinates for {nv} vertices", uv.len())));
+            }
+        }
+        for (f, tri) in indices.iter().enumerate() {
+            if let Some(&bad) = tri.iter().find(|&&i| i as usize >= nv) {
+                return Err(ShapeError(format!("mesh face {f} refers to vertex {bad}, but there are only {nv} vertices")));
+            }
+        }
+        let positions: Vec<Vec3> = if to_world.is_identity() { positions } else { positions.iter().map(|&p| to_world.point(p)).collect() };
+        if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
+            return Err(ShapeError(format!("mesh vertex {i} is not finite after to_world")));
+        }
+        let sign = if flip_normals { -1.0 } else { 1.0 };
+        let normals = if face_normals {
+            None
+        } else {
+            let ns = match normals {
+                Some(ns) => ns.iter().map(|&n| to_world.normal(n).normalize_or_zero()).collect(),
+                None => smooth_normals(&positions, &indices),
+            };
+            Some(ns.into_iter().map(|n| n * sign).collect())
+        };
+
+        let mut cdf = Vec::with_capacity(indices.len());
+        let mut acc = 0.0f64;
+        for tri in &indices {
+            let [a, b, c] = tri.map(|i| positions[i as usize]);
+            let area = 0.5 * (b - a).cross(c - a).length() as f64;
+            if area.is_finite() {
+                acc += area;
+            }
+            cdf.push(acc);
+        }
+        let area = acc as f32;
+        let cdf = if acc > 0.0 {
+            let mut cdf: Vec<f32> = cdf.iter().map(|&c| (c / acc) as f32).collect();
+            // Entries after the last non-degenerate triangle must be exactly 1.
+            let last = cdf.iter().rposition(|&c| c < 1.0).map_or(0, |i| i + 1);
+            for c in &mut cdf[last..] {
+                *c = 1.0;
+            }
+            cdf
+        } else {
+            Vec::new()
+        };
+        Ok(Mesh { positions, normals, uvs, indices, flip_normals, area, cdf })
+    }
+
+    /// [`Mesh::new`] from [`MeshData`].
+    pub fn from_data(data: MeshData, to_world: &Transform, flip_normals: bool, face_normals: bool) -> Result<Mesh, ShapeError> {
+        Mesh::new(data.positions, data.normals, data.uvs, data.indices, to_world, flip_normals, face_normals)
+    }
+
+    #[inline]
+    pub fn triangle(&self, prim: u32) -> [Vec3; 3] {
+        self.indices[prim as usize].map(|i| self.positions[i as usize])
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        let mut b = Aabb::EMPTY;
+        for tri in &self.indices {
+            for &i in tri {
+                b.grow(self.positions[i as usize]);
+            }
+        }
+        b
+    }
+
+    pub fn prim_bounds(&self, prim: u32) -> Aabb {
+        let [a, b, c] = self.triangle(prim);
+        let mut bb = Aabb::from_point(a);
+        bb.grow(b);
+        bb.grow(c);
+        bb
+    }
+
+    #[inline]
+    pub fn intersect_prim(&self, prim: u32, ray: &Ray) -> Option<(f32, Vec2)> {
+        let [a, b, c] = self.triangle(prim);
+        intersect_triangle(a, b, c, ray)
+    }
+
+    pub fn surface_area(&self) -> f32 {
+        self.area
+    }
+
+    /// Geometric normal of a triangle (flipped by `flip_normals`); zero for degenerate ones.
+    fn face_normal(&self, prim: u32) -> Vec3 {
+        let [a, b, c] = self.triangle(prim);
+        let n = (b - a).cross(c - a).normalize_or_zero();
+        if self.flip_normals {
+            -n
+        } else {
+            n
+        }
+    }
+
+    fn uv_at(&self, prim: u32, b: Vec2) -> Vec2 {
+        match &self.uvs {
+            Some(uvs) => {
+                let [i0, i1, i2] = self.indices[prim as usize];
+                uvs[i0 as usize] * (1.0 - b.x - b.y) + uvs[i1 as usize] * b.x + uvs[i2 as usize] * b.y
+            }
+            None => b,
+        }
+    }
+
+    pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
+        let prim = hit.prim;
+        let [i0, i1, i2] = self.indices[prim as usize];
+        let [p0, p1, p2] = self.triangle(prim);
+        let (b1, b2) = (hit.uv.x, hit.uv.y);
+        let b0 = 1.0 - b1 - b2;
+        let p = p0 * b0 + p1 * b1 + p2 * b2;
+        let mut n = self.face_normal(prim);
+        if n == Vec3::ZERO {
+            n = -ray.d;
+        }
+        let e1 = p1 - p0;
+        let e2 = p2 - p0;
+        let dpdu = match &self.uvs {
+            Some(uvs) => {
+                let (uv0, uv1, uv2) = (uvs[i0 as usize], uvs[i1 as usize], uvs[i2 as usize]);
+                let d1 = uv1 - uv0;
+                let d2 = uv2 - uv0;
+                let det = d1.x * d2.y - d1.y * d2.x;
+                let dpdu = (e1 * d2.y - e2 * d1.y) / det;
+                if det != 0.0 && dpdu.is_finite() {
+                    dpdu
+                } else {
+                    e1
+                }
+            }
+            None => e1,
+        };
+        let ns = match &self.normals {
+            Some(ns) => {
+                let s = (ns[i0 as usize] * b0 + ns[i1 as usize] * b1 + ns[i2 as usize] * b2).normalize_or_zero();
+                if s == Vec3::ZERO {
+                    n
+                } else {
+                    s
+                }
+            }
+            None => n,
+        };
+        SurfaceInteraction {
+            p,
+            t: hit.t,
+            n,
+            sh_frame: Frame::from_normal_tangent(ns, dpdu),
+            uv: self.uv_at(prim, hit.uv),
+            wo: -ray.d,
+            shape: hit.shape,
+            prim,
+        }
+    }
+
+    /// Uniform by area: picks a triangle with probability proportional to its area (the
+    /// sample's x is reused after the choice), then a uniform point on it.
+    pub fn sample_position(&self, u: Vec2) -> PositionSample {
+        if self.cdf.is_empty() {
+            let p = self.positions.first().copied().unwrap_or(Vec3::ZERO);
+            return PositionSample { p, n: Vec3::Z, uv: Vec2::ZERO, pdf_area: 0.0 };
+        }
+        let idx = self.cdf.partition_point(|&c| c <= u.x).min(self.cdf.len() - 1);
+        let lo = if idx == 0 { 0.0 } else { self.cdf[idx - 1] };
+        let hi = self.cdf[idx];
+        let ux = ((u.x - lo) / (hi - lo)).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+        let b = warp::square_to_uniform_triangle(Vec2::new(ux, u.y));
+        let [p0, p1, p2] = self.triangle(idx as u32);
+        let p = p0 * (1.0 - b.x - b.y) + p1 * b.x + p2 * b.y;
+        PositionSample { p, n: self.face_normal(idx as u32), uv: self.uv_at(idx as u32, b), pdf_area: 1.0 / self.area }
+    }
+}
+
+/// Mitsuba's vertex normals: each face adds its unit normal weighted by its angle at the vertex.
+fn smooth_normals(positions: &[Vec3], indices: &[[u32; 3]]) -> Vec<Vec3> {
+    let mut ns = vec![Vec3::ZERO; positions.len()];
+    for tri in indices {
+        let v = tri.map(|i| positions[i as usize]);
+        let n = (v[1] - v[0]).cross(v[2] - v[0]).normalize_or_zero();
+        if n == Vec3::ZERO {
+            continue;
+        }
+        for i in 0..3 {
+            let d0 = (v[(i + 1) % 3] - v[i]).normalize_or_zero();
+            let d1 = (v[(i + 2) % 3] - v[i]).normalize_or_zero();
+            let angle = d0.dot(d1).clamp(-1.0, 1.0).acos();
+            if angle.is_finite() {
+                ns[tri[i] as usize] += n * angle;
+            }
+        }
+    }
+    ns.into_iter().map(|n| n.normalize_or_zero()).collect()
+}

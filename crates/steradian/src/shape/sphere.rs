@@ -1,0 +1,202 @@
+//! # `sphere`: an analytic sphere
+//!
+//! Mitsuba plugin `sphere`.
+//!
+//! | Parameter | Type | Default | Meaning |
+//! |---|---|---|---|
+//! | `center` | point | (0, 0, 0) | centre, m (before `to_world`) |
+//! | `radius` | float | 1 | radius, m (before `to_world`) |
+//! | `to_world` | transform | identity | applied **after** centre and radius: the final transform is `to_world · T(center) · S(radius)` |
+//! | `flip_normals` | bool | false | normals point inwards instead of outwards |
+//!
+//! steradian computes: the world centre `M·0` and the world radius, the mean of the lengths of
+//! the three transformed unit axes (a sphere stays a sphere: for a non-uniform scale Mitsuba
+//! only warns, and steradian likewise uses one radius). A transform with a negative
+//! determinant (or a negative `radius`) flips the normals, as in Mitsuba. Intersections are
+//! solved in double precision with the numerically stable quadratic (both roots, so rays from
+//! inside hit the far side). uv = (φ/2π, θ/π) of the hit in the local frame of
+//! `to_world · T(center) · S(radius)`. Direction sampling from outside samples the cone of
+//! directions subtending the sphere uniformly (pdf 1/(2π(1 − cos θmax)), 1/sr); from inside
+//! it samples the area uniformly and converts to solid angle.
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+
+use super::{area_to_solid_angle, azimuth01, is_positive_finite, DirectionSample, PositionSample};
+use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
+use crate::sampling::warp;
+
+#[derive(Clone, Debug)]
+pub struct Sphere {
+    /// to_world · T(center) · S(radius): unit sphere → world.
+    object_to_world: Transform,
+    center: Vec3,
+    radius: f32,
+    flip: bool,
+}
+
+impl Sphere {
+    pub fn new(center: Vec3, radius: f32, to_world: &Transform, flip_normals: bool) -> Sphere {
+        let r = radius.abs();
+        let local = Transform::translate(center).then_after(&Transform {
+            m: glam::Mat4::from_scale(Vec3::splat(r)),
+            inv: glam::Mat4::from_scale(Vec3::splat(1.0 / r)),
+        });
+        let object_to_world = to_world.then_after(&local);
+        let s = to_world.axis_scales();
+        let flip = flip_normals ^ (radius < 0.0) ^ to_world.flips_handedness();
+        Sphere { object_to_world, center: to_world.point(center), radius: r * (s.x + s.y + s.z) / 3.0, flip }
+    }
+
+    pub fn center(&self) -> Vec3 {
+        self.center
+    }
+
+    pub fn radius(&self) -> f32 {
+        self.radius
+    }
+
+    pub fn bounds(&self) -> Aabb {
+        Aabb::new(self.center - Vec3::splat(self.radius), self.center + Vec3::splat(self.radius))
+    }
+
+    pub fn surface_area(&self) -> f32 {
+        4.0 * PI * self.radius * self.radius
+    }
+
+    #[inline]
+    fn normal_at(&self, p: Vec3) -> Vec3 {
+        let n = (p - self.center).normalize();
+        if self.flip {
+            -n
+        } else {
+            n
+        }
+    }
+
+    fn uv_at(&self, p: Vec3) -> Vec2 {
+        let l = self.object_to_world.inv.transform_point3(p).normalize_or_zero();
+        Vec2::new(azimuth01(l.x, l.y), l.z.clamp(-1.0, 1.0).acos() * std::f32::consts::FRAC_1_PI)
+    }
+
+    /// Both roots of |o + t·d − c|² = r² for the unit direction d, in increasing order.
+    #[inline]
+    fn roots(&self, o: Vec3, d: Vec3) -> Option<(f64, f64)> {
+        let oc = o.as_dvec3() - self.center.as_dvec3();
+        let d = d.as_dvec3();
+        let r = self.radius as f64;
+        let b = oc.dot(d);
+        let c = oc.dot(oc) - r * r;
+        // discriminant written as r² − |oc − b·d|² (exact-ish for far rays)
+        let f = oc - b * d;
+        let disc = r * r - f.dot(f);
+        if disc < 0.0 {
+            return None;
+        }
+        let q = -b - disc.sqrt().copysign(b);
+        if q == 0.0 {
+            return Some((0.0, 0.0));
+        }
+        let (t0, t1) = (c / q, q);
+        Some(if t0 <= t1 { (t0, t1) } else { (t1, t0) })
+    }
+
+    #[inline]
+    pub fn intersect(&self, ray: &Ray) -> Option<(f32, Vec2)> {
+        let (t0, t1) = self.roots(ray.o, ray.d)?;
+        let t_max = ray.t_max as f64;
+        let t = if t0 > 0.0 && t0 < t_max {
+            t0
+        } else if t1 > 0.0 && t1 < t_max {
+            t1
+        } else {
+            return None;
+        };
+        let t = t as f32;
+        if !(t > 0.0 && t < ray.t_max) {
+            return None;
+        }
+        Some((t, self.uv_at(ray.at(t))))
+    }
+
+    pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
+        // Project the hit onto the surface to remove the error of o + t·d.
+        let p = self.center + (ray.at(hit.t) - self.center).normalize() * self.radius;
+        let n = self.normal_at(p);
+        let l = self.object_to_world.inv.transform_point3(p);
+        let dpdu = self.object_to_world.vector(Vec3::new(-l.y, l.x, 0.0));
+        SurfaceInteraction {
+            p,
+            t: hit.t,
+            n,
+            sh_frame: Frame::from_normal_tangent(n, dpdu),
+            uv: hit.uv,
+            wo: -ray.d,
+            shape: hit.shape,
+            prim: hit.prim,
+        }
+    }
+
+    pub fn sample_position(&self, u: Vec2) -> PositionSample {
+        let w = warp::square_to_uniform_sphere(u);
+        let p = self.center + w * self.radius;
+        PositionSample { p, n: if self.flip { -w } else { w }, uv: self.uv_at(p), pdf_area: 1.0 / self.surface_area() }
+    }
+
+    /// (cos θmax, 1 − cos θmax) of the cone subtended from `reference`, or `None` when the
+    /// reference is inside (or on) the sphere.
+    #[inline]
+    fn cone(&self, reference: Vec3) -> Option<(f32, f32, f32)> {
+        let dc2 = (self.center - reference).length_squared();
+        let r2 = self.radius * self.radius;
+        if dc2 <= r2 * (1.0 + 1e-5) {
+            return None;
+        }
+        let sin2 = r2 / dc2;
+        let cos_max = (1.0 - sin2).max(0.0).sqrt();
+        // 1 − cos θmax = sin² / (1 + cos), without cancellation for tiny cones
+        let one_minus = sin2 / (1.0 + cos_max);
+        Some((cos_max, one_minus, dc2.sqrt()))
+    }
+
+    pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
+        let Some((cos_max, one_minus, dc)) = self.cone(reference) else {
+            return super::direction_from_position(reference, &self.sample_position(u));
+        };
+        let axis = (self.center - reference) / dc;
+        let local = warp::square_to_uniform_cone(u, cos_max);
+        let wi = Frame::from_normal(axis).to_world(local).normalize();
+        // Nearest intersection: dist = dc·cos θ − sqrt(r² − dc²·sin² θ); clamped at grazing.
+        let cos_t = local.z as f64;
+        let sin2_t = (local.x as f64).powi(2) + (local.y as f64).powi(2);
+        let (dc64, r64) = (dc as f64, self.radius as f64);
+        let dist = (dc64 * cos_t - (r64 * r64 - dc64 * dc64 * sin2_t).max(0.0).sqrt()) as f32;
+        if !is_positive_finite(dist) {
+            return None;
+        }
+        let p = reference + wi * dist;
+        // Put p exactly on the surface (it only moves by rounding error).
+        let p = self.center + (p - self.center).normalize() * self.radius;
+        let pdf = 1.0 / (2.0 * PI * one_minus);
+        if !(pdf.is_finite() && pdf > 0.0) {
+            return None;
+        }
+        let n = self.normal_at(p);
+        Some(DirectionSample { p, n, uv: self.uv_at(p), wi, dist, pdf })
+    }
+
+    pub fn pdf_direction(&self, reference: Vec3, p: Vec3, n: Vec3) -> f32 {
+        match self.cone(reference) {
+            Some((_, one_minus, _)) => {
+                let pdf = 1.0 / (2.0 * PI * one_minus);
+                if pdf.is_finite() {
+                    pdf
+                } else {
+                    0.0
+                }
+            }
+            None => area_to_solid_angle(1.0 / self.surface_area(), reference, p, n),
+        }
+    }
+}

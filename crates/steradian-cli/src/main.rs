@@ -1,1 +1,37 @@
-fn main() {}
+//! `steradian`: render Mitsuba 3 scenes in physical units.
+//!
+//! A thin shell over the `steradian` and `steradian-mitsuba` libraries: argument parsing,
+//! progress display, file output and error reporting live here, nothing else.
+
+mod render;
+
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+#[derive(Parser)]
+#[command(name = "steradian", version, about = "Physically based rendering and light measurement of Mitsuba 3 scenes")]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Render a scene to OpenEXR (linear RGB radiance, W/(m²·sr)) plus an sRGB PNG preview.
+    Render(render::RenderArgs),
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render(args) => render::run(args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}

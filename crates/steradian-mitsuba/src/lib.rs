@@ -47,3 +47,26 @@ pub use error::LoadError;
 pub use properties::{Properties, PropertyValue, SpectrumValue};
 pub use source::SourcePos;
 pub use xml::{parse_file, parse_string, Child, ObjectTag, PluginNode, SceneNode};
+
+mod registry;
+
+use std::path::Path;
+
+use steradian::scene::Scene;
+
+pub use registry::build_scene;
+
+/// Loads a Mitsuba 3 XML scene file into a renderable scene. `defines` override the file's
+/// `<default>`s (`-D name=value`).
+pub fn load_file(path: &Path, defines: &[(String, String)]) -> Result<Scene, LoadError> {
+    let tree = parse_file(path, defines)?;
+    let base = path.parent().unwrap_or(Path::new("."));
+    build_scene(&tree, base)
+}
+
+/// Loads a scene from a string. `name` is how error messages call it; relative file names
+/// (meshes) resolve against `base_dir`.
+pub fn load_string(xml: &str, name: &Path, base_dir: &Path, defines: &[(String, String)]) -> Result<Scene, LoadError> {
+    let tree = xml::parse_string_named(xml, name, base_dir, defines)?;
+    build_scene(&tree, base_dir)
+}

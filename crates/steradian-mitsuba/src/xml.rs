@@ -260,8 +260,13 @@ pub fn parse_file(path: &Path, defines: &[(String, String)]) -> Result<SceneNode
 /// Parses a scene from a string (positions name the file `<string>`); `<include>`s are
 /// resolved relative to `base_dir`.
 pub fn parse_string(xml: &str, base_dir: &Path, defines: &[(String, String)]) -> Result<SceneNode, LoadError> {
+    parse_string_named(xml, Path::new("<string>"), base_dir, defines)
+}
+
+/// [`parse_string`] with the name error positions should give the source.
+pub fn parse_string_named(xml: &str, name: &Path, base_dir: &Path, defines: &[(String, String)]) -> Result<SceneNode, LoadError> {
     let mut p = Parser::new(defines);
-    p.parse_root(Arc::new(PathBuf::from("<string>")), xml, base_dir.to_path_buf())
+    p.parse_root(Arc::new(name.to_path_buf()), xml, base_dir.to_path_buf())
 }
 
 struct Param {

@@ -1,1 +1,164 @@
-//! The scene.
+//! The scene: shapes with their BSDFs and emitters, lights, sensors, the integrator, and the
+//! acceleration structure that answers ray queries.
+
+use glam::{Vec2, Vec3};
+
+use crate::accel::Accel;
+use crate::bsdf::Bsdf;
+use crate::emitter::{Emitter, EmitterSample, Support};
+use crate::geometry::{Aabb, Ray, SurfaceInteraction};
+use crate::integrator::Integrator;
+use crate::sensor::Sensor;
+use crate::shape::Shape;
+
+/// What a shape is made of and whether it glows.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ShapeBinding {
+    /// Index into [`Scene::bsdfs`].
+    pub bsdf: u32,
+    /// Index into [`Scene::emitters`] of the shape's area light.
+    pub emitter: Option<u32>,
+    /// The shape's `id` in the scene file (empty when it has none).
+    pub id: String,
+}
+
+/// Everything a scene is made of, before the acceleration structure is built.
+#[derive(Clone, Debug, Default)]
+pub struct SceneDescription {
+    pub shapes: Vec<(Shape, ShapeBinding)>,
+    pub bsdfs: Vec<Bsdf>,
+    pub emitters: Vec<Emitter>,
+    pub sensors: Vec<Sensor>,
+    pub integrator: Option<Integrator>,
+}
+
+/// A renderable scene.
+#[derive(Debug)]
+pub struct Scene {
+    pub shapes: Vec<Shape>,
+    pub bindings: Vec<ShapeBinding>,
+    pub bsdfs: Vec<Bsdf>,
+    pub emitters: Vec<Emitter>,
+    /// The light at infinity that escaping rays see (Mitsuba allows one).
+    pub environment: Option<u32>,
+    pub sensors: Vec<Sensor>,
+    pub integrator: Integrator,
+    accel: Accel,
+}
+
+impl Scene {
+    /// Builds the acceleration structure and checks cross references.
+    pub fn new(desc: SceneDescription) -> Result<Scene, String> {
+        let (shapes, bindings): (Vec<Shape>, Vec<ShapeBinding>) = desc.shapes.into_iter().unzip();
+        for (i, b) in bindings.iter().enumerate() {
+            if b.bsdf as usize >= desc.bsdfs.len() {
+                return Err(format!("shape {i} refers to BSDF {} of {}", b.bsdf, desc.bsdfs.len()));
+            }
+            if let Some(e) = b.emitter {
+                match desc.emitters.get(e as usize) {
+                    Some(Emitter::Area(a)) if a.shape as usize == i => {}
+                    _ => return Err(format!("shape {i} refers to emitter {e}, which is not its area light")),
+                }
+            }
+        }
+        let envs: Vec<u32> = desc.emitters.iter().enumerate().filter(|(_, e)| e.is_environment()).map(|(i, _)| i as u32).collect();
+        if envs.len() > 1 {
+            return Err("only one environment emitter (`constant`) is allowed per scene".into());
+        }
+        let integrator = desc.integrator.ok_or("the scene has no integrator")?;
+        let accel = Accel::build(&shapes);
+        Ok(Scene {
+            shapes,
+            bindings,
+            bsdfs: desc.bsdfs,
+            emitters: desc.emitters,
+            environment: envs.first().copied(),
+            sensors: desc.sensors,
+            integrator,
+            accel,
+        })
+    }
+
+    /// Bounds of all geometry.
+    pub fn bounds(&self) -> Aabb {
+        self.accel.bounds()
+    }
+
+    /// The closest surface along the ray.
+    #[inline]
+    pub fn intersect(&self, ray: &Ray) -> Option<SurfaceInteraction> {
+        let hit = self.accel.intersect(&self.shapes, ray)?;
+        Some(self.shapes[hit.shape as usize].interaction(ray, &hit))
+    }
+
+    /// True when something blocks the ray before `ray.t_max`.
+    #[inline]
+    pub fn occluded(&self, ray: &Ray) -> bool {
+        self.accel.occluded(&self.shapes, ray)
+    }
+
+    #[inline]
+    pub fn bsdf(&self, si: &SurfaceInteraction) -> &Bsdf {
+        &self.bsdfs[self.bindings[si.shape as usize].bsdf as usize]
+    }
+
+    /// The area light of the shape hit, if any.
+    #[inline]
+    pub fn area_emitter(&self, si: &SurfaceInteraction) -> Option<(u32, &Emitter)> {
+        let e = self.bindings[si.shape as usize].emitter?;
+        Some((e, &self.emitters[e as usize]))
+    }
+
+    /// Probability of choosing emitter `e` for next-event estimation (uniform, as Mitsuba with
+    /// the default `sampling_weight`).
+    #[inline]
+    pub fn emitter_selection_pdf(&self, _e: u32) -> f32 {
+        1.0 / self.emitters.len() as f32
+    }
+
+    /// Picks a light and samples a direction to it from `p` (a surface point with geometric
+    /// normal `n`, used to offset the shadow ray). The sample's pdf and weight include the
+    /// selection probability; occluded samples return `None`.
+    #[inline]
+    pub fn sample_emitter_direction(&self, p: Vec3, n: Vec3, u: Vec2) -> Option<EmitterSample> {
+        let count = self.emitters.len();
+        if count == 0 {
+            return None;
+        }
+        let x = u.x * count as f32;
+        let index = (x as usize).min(count - 1);
+        let u = Vec2::new((x - index as f32).min(1.0 - f32::EPSILON / 2.0), u.y);
+        let emitter = &self.emitters[index];
+        let mut es = emitter.sample_direction(&self.shapes, p, u)?;
+        let sel = self.emitter_selection_pdf(index as u32);
+        es.weight /= sel;
+        if es.support == Support::Extended {
+            es.pdf *= sel;
+        }
+        let origin = crate::geometry::offset_ray_origin(p, n, es.wi);
+        let shadow = if es.dist.is_finite() {
+            let target = p + es.wi * es.dist;
+            let d = target - origin;
+            let dist = d.length();
+            Ray::new(origin, d / dist, dist * (1.0 - crate::geometry::interaction::SHADOW_EPSILON))
+        } else {
+            Ray::infinite(origin, es.wi)
+        };
+        if self.occluded(&shadow) {
+            return None;
+        }
+        Some(es)
+    }
+
+    /// Solid-angle density (selection included) with which [`Scene::sample_emitter_direction`]
+    /// from `p` proposes direction `wi` reaching emitter `e` at `p_light` with normal `n_light`.
+    #[inline]
+    pub fn pdf_emitter_direction(&self, e: u32, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+        self.emitters[e as usize].pdf_direction(&self.shapes, p, wi, p_light, n_light) * self.emitter_selection_pdf(e)
+    }
+
+    /// Index of the sensor with the given `id`.
+    pub fn sensor_index(&self, id: &str) -> Option<usize> {
+        self.sensors.iter().position(|s| s.id == id)
+    }
+}

@@ -1,1 +1,129 @@
-//! (in progress)
+//! Emitters: where light comes from, each in its own radiometric unit.
+//!
+//! | plugin        | quantity given            | unit        |
+//! |---------------|---------------------------|-------------|
+//! | `area`        | radiance L of a surface   | W/(m²·sr)   |
+//! | `point`       | radiant intensity I       | W/sr        |
+//! | `spot`        | radiant intensity I on axis | W/sr      |
+//! | `directional` | irradiance H ⟂ the beam   | W/m²        |
+//! | `constant`    | radiance L of the sky     | W/(m²·sr)   |
+//!
+//! `sample_direction` answers "from which direction does this light reach point p, and with
+//! what weight?": the returned `weight` is the incident radiance divided by the solid-angle
+//! density (for delta lights: the irradiance a surface facing the light receives, I/r² or H).
+//! Multiplying by ρ·|cos θ| gives the reflected radiance estimate.
+
+mod area;
+mod constant;
+mod directional;
+mod point;
+mod spot;
+
+pub use area::AreaLight;
+pub use constant::ConstantEnvironment;
+pub use directional::DirectionalLight;
+pub use point::PointLight;
+pub use spot::SpotLight;
+
+use glam::{Vec2, Vec3};
+
+use crate::shape::Shape;
+use crate::Spectrum;
+
+/// Whether a light can be hit by a ray or only reached by sampling it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Support {
+    /// Occupies a solid angle (area lights, environments): has a density, MIS applies.
+    Extended,
+    /// A Dirac delta in position or direction (point, spot, directional).
+    Delta,
+}
+
+/// A sampled direction towards a light.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EmitterSample {
+    /// Unit direction from the reference point towards the light.
+    pub wi: Vec3,
+    /// Distance to the sampled point, m (`f32::INFINITY` for lights at infinity).
+    pub dist: f32,
+    /// Density of `wi` in 1/sr (1 for delta lights).
+    pub pdf: f32,
+    /// Incident radiance / pdf; for delta lights the irradiance on a surface facing the light
+    /// (W/m²).
+    pub weight: Spectrum,
+    pub support: Support,
+}
+
+/// An emitter. Closed enum: one variant per emitter plugin.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Emitter {
+    Area(AreaLight),
+    Point(PointLight),
+    Spot(SpotLight),
+    Directional(DirectionalLight),
+    Constant(ConstantEnvironment),
+}
+
+impl Emitter {
+    /// Samples a direction from `p` towards the light (no visibility test).
+    #[inline]
+    pub fn sample_direction(&self, shapes: &[Shape], p: Vec3, u: Vec2) -> Option<EmitterSample> {
+        match self {
+            Emitter::Area(e) => e.sample_direction(shapes, p, u),
+            Emitter::Point(e) => e.sample_direction(p),
+            Emitter::Spot(e) => e.sample_direction(p),
+            Emitter::Directional(e) => e.sample_direction(p),
+            Emitter::Constant(e) => e.sample_direction(p, u),
+        }
+    }
+
+    /// Solid-angle density with which `sample_direction` from `p` proposes the point `p_light`
+    /// (with normal `n_light`) seen in direction `wi` (0 for delta lights).
+    #[inline]
+    pub fn pdf_direction(&self, shapes: &[Shape], p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+        match self {
+            Emitter::Area(e) => e.pdf_direction(shapes, p, wi, p_light, n_light),
+            Emitter::Constant(e) => e.pdf_direction(wi),
+            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => 0.0,
+        }
+    }
+
+    /// Radiance arriving along a ray that ends on this light: for area lights the radiance
+    /// leaving the surface point with normal `n` towards `wo` (away from the light), for
+    /// environments the radiance from direction `-wo`.
+    #[inline]
+    pub fn radiance(&self, wo: Vec3, n: Vec3, uv: Vec2) -> Spectrum {
+        match self {
+            Emitter::Area(e) => e.radiance(wo, n, uv),
+            Emitter::Constant(e) => e.radiance(),
+            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => Spectrum::ZERO,
+        }
+    }
+
+    #[inline]
+    pub fn support(&self) -> Support {
+        match self {
+            Emitter::Area(_) | Emitter::Constant(_) => Support::Extended,
+            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => Support::Delta,
+        }
+    }
+
+    /// True for lights at infinity that rays escaping the scene see.
+    #[inline]
+    pub fn is_environment(&self) -> bool {
+        matches!(self, Emitter::Constant(_))
+    }
+
+    /// Total emitted flux Φ in W (per channel); for lights at infinity, the flux through the
+    /// scene's bounding sphere of radius `scene_radius`.
+    pub fn flux(&self, shapes: &[Shape], scene_radius: f32) -> Spectrum {
+        use std::f32::consts::PI;
+        match self {
+            Emitter::Area(e) => e.radiance.mean() * PI * shapes[e.shape as usize].surface_area(),
+            Emitter::Point(e) => e.intensity * 4.0 * PI,
+            Emitter::Spot(e) => e.intensity * e.solid_angle_factor(),
+            Emitter::Directional(e) => e.irradiance * PI * scene_radius * scene_radius,
+            Emitter::Constant(e) => e.radiance * 4.0 * PI * PI * scene_radius * scene_radius,
+        }
+    }
+}

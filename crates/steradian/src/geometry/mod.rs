@@ -2,12 +2,13 @@
 
 mod aabb;
 mod frame;
-mod interaction;
+
 mod ray;
 mod transform;
 
 pub use aabb::Aabb;
 pub use frame::Frame;
+pub mod interaction;
 pub use interaction::{offset_ray_origin, PreliminaryHit, SurfaceInteraction};
 pub use ray::Ray;
 pub use transform::{Transform, TransformError};

@@ -1,1 +1,35 @@
-//! (in progress)
+//! Integrators: estimators of the radiance arriving along a camera ray, and the driver that
+//! turns them into images.
+
+mod direct;
+mod mis;
+mod path;
+mod render;
+
+pub use direct::DirectIntegrator;
+pub use path::{parse_max_depth, EmitterVisibility, PathTracer};
+pub use render::{render, Progress, RenderError, RenderOptions, RenderOutput};
+
+use crate::geometry::Ray;
+use crate::sampling::PixelSampler;
+use crate::scene::Scene;
+use crate::Spectrum;
+
+/// The light transport algorithms. Closed enum: one variant per integrator plugin.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Integrator {
+    Path(PathTracer),
+    Direct(DirectIntegrator),
+}
+
+impl Integrator {
+    /// An unbiased estimate of the radiance L (W/(m²·sr)) arriving at the ray's origin from
+    /// direction −ray.d.
+    #[inline]
+    pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
+        match self {
+            Integrator::Path(i) => i.li(scene, ray, sampler),
+            Integrator::Direct(i) => i.li(scene, ray, sampler),
+        }
+    }
+}

@@ -1,0 +1,144 @@
+//! `steradian render`.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
+use std::time::Duration;
+
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+use steradian::film::{write_exr, write_png};
+use steradian::integrator::{render, Progress, RenderOptions};
+
+/// The built-in scene, rendered when no scene file is given.
+const BUILTIN_SCENE: &str = include_str!("../../../scenes/cornell-box.xml");
+const BUILTIN_NAME: &str = "cornell-box";
+
+#[derive(Args)]
+pub struct RenderArgs {
+    /// Mitsuba 3 XML scene; the built-in Cornell box when omitted.
+    scene: Option<PathBuf>,
+    /// Output OpenEXR file (a PNG preview is written beside it). Default: the scene's name
+    /// with `.exr`, beside the scene file (the current directory for the built-in scene).
+    #[arg(short, long)]
+    output: Option<PathBuf>,
+    /// Samples per pixel (overrides the scene's sampler).
+    #[arg(long)]
+    spp: Option<u32>,
+    /// Random seed (overrides the scene's sampler).
+    #[arg(long)]
+    seed: Option<u64>,
+    /// Render the sensor with this id.
+    #[arg(long)]
+    sensor: Option<String>,
+    /// Override a `<default name=... value=...>` of the scene: -D spp=64.
+    #[arg(short = 'D', value_name = "NAME=VALUE")]
+    defines: Vec<String>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Do not show the progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+pub fn parse_defines(defines: &[String]) -> Result<Vec<(String, String)>, String> {
+    defines
+        .iter()
+        .map(|d| match d.split_once('=') {
+            Some((k, v)) if !k.is_empty() => Ok((k.to_string(), v.to_string())),
+            _ => Err(format!("-D expects NAME=VALUE, got '{d}'")),
+        })
+        .collect()
+}
+
+pub fn run(args: RenderArgs) -> Result<(), String> {
+    let defines = parse_defines(&args.defines)?;
+    let (scene, default_output) = match &args.scene {
+        Some(path) => {
+            let scene = steradian_mitsuba::load_file(path, &defines).map_err(|e| e.to_string())?;
+            (scene, path.with_extension("exr"))
+        }
+        None => {
+            let scene = steradian_mitsuba::load_string(BUILTIN_SCENE, Path::new(&format!("<built-in {BUILTIN_NAME}.xml>")), Path::new("."), &defines)
+                .map_err(|e| e.to_string())?;
+            (scene, PathBuf::from(format!("{BUILTIN_NAME}.exr")))
+        }
+    };
+    let output = args.output.unwrap_or(default_output);
+    if output.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase()) != Some("exr".into()) {
+        return Err(format!("output file '{}' must end in .exr", output.display()));
+    }
+    let sensor = match &args.sensor {
+        Some(id) => Some(scene.sensor_index(id).ok_or_else(|| {
+            let ids: Vec<&str> = scene.sensors.iter().map(|s| s.id.as_str()).filter(|s| !s.is_empty()).collect();
+            format!("the scene has no sensor with id '{id}' (sensor ids: {})", if ids.is_empty() { "none".into() } else { ids.join(", ") })
+        })?),
+        None => None,
+    };
+    if args.spp == Some(0) {
+        return Err("--spp must be at least 1".into());
+    }
+    if args.threads == Some(0) {
+        return Err("--threads must be at least 1".into());
+    }
+
+    let cancel = Arc::new(AtomicBool::new(false));
+    {
+        let cancel = cancel.clone();
+        // A second Ctrl-C ends the process at once.
+        ctrlc::set_handler(move || {
+            if cancel.swap(true, Ordering::SeqCst) {
+                std::process::exit(130);
+            }
+        })
+        .map_err(|e| format!("cannot install the Ctrl-C handler: {e}"))?;
+    }
+
+    let bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        let b = ProgressBar::new(1000);
+        b.set_style(
+            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}%  ETA {eta}  {msg}")
+                .expect("valid progress template"),
+        );
+        b.enable_steady_tick(Duration::from_millis(200));
+        b
+    };
+    let progress = |p: Progress| {
+        bar.set_position(p.samples_done * 1000 / p.samples_total.max(1));
+        bar.set_message(format!("{:.1} Msamples/s", p.samples_done as f64 / p.elapsed.as_secs_f64().max(1e-9) / 1e6));
+    };
+    let opts = RenderOptions {
+        spp: args.spp,
+        seed: args.seed,
+        threads: args.threads,
+        sensor,
+        cancel: Some(&cancel),
+        progress: Some(&progress),
+    };
+    let out = render(&scene, &opts).map_err(|e| e.to_string())?;
+    bar.finish_and_clear();
+
+    let image = out.film.develop();
+    write_exr(&output, &image)?;
+    let png = output.with_extension("png");
+    write_png(&png, &image, 1.0)?;
+
+    let secs = out.elapsed.as_secs_f64();
+    if out.interrupted {
+        eprintln!("interrupted: the image holds {} of {} samples per pixel", out.spp, out.spp_requested);
+    }
+    println!(
+        "rendered {}x{} at {} spp in {:.2} s ({:.2} Msamples/s), {} dropped NaN/Inf samples",
+        out.film.width,
+        out.film.height,
+        out.spp,
+        secs,
+        out.samples() as f64 / secs.max(1e-9) / 1e6,
+        out.dropped_samples
+    );
+    println!("wrote {} and {}", output.display(), png.display());
+    Ok(())
+}

@@ -1,0 +1,93 @@
+//! Emitter plugins: `area` (attached to a shape), `point`, `spot`, `directional`,
+//! `constant`.
+
+use steradian::emitter::{AreaLight, ConstantEnvironment, DirectionalLight, Emitter, PointLight, SpotLight};
+use steradian::geometry::Transform;
+use steradian::{Spectrum, Vec3};
+
+use super::{at, unknown_type};
+use crate::error::LoadError;
+use crate::xml::PluginNode;
+
+const STANDALONE: &[&str] = &["point", "spot", "directional", "constant"];
+
+/// The `area` emitter of shape number `shape`.
+pub(crate) fn build_area(node: &PluginNode, shape: u32) -> Result<Emitter, LoadError> {
+    if node.plugin_type != "area" {
+        return Err(LoadError::at(
+            &node.pos,
+            format!("a shape can only carry an 'area' emitter, not '{}'", node.plugin_type),
+        ));
+    }
+    let radiance = node.props.get_spectrum("radiance")?.unwrap_or(Spectrum::ONE);
+    check_non_negative(node, "radiance", radiance)?;
+    node.check_all_used()?;
+    Ok(Emitter::Area(AreaLight::new(shape, radiance.into())))
+}
+
+fn check_non_negative(node: &PluginNode, name: &str, v: Spectrum) -> Result<(), LoadError> {
+    if !v.is_finite() || v.min_element() < 0.0 {
+        let pos = node.props.position(name).unwrap_or(&node.pos);
+        return Err(LoadError::at(pos, format!("{}: '{name}' must be finite and non-negative, got {v}", node.desc())));
+    }
+    Ok(())
+}
+
+/// A position given either as `position` or as the translation of `to_world`, not both.
+fn position_or_to_world(node: &PluginNode) -> Result<Transform, LoadError> {
+    let p = &node.props;
+    match (p.get_point("position")?, p.get_transform("to_world")?) {
+        (Some(_), Some(_)) => Err(LoadError::at(
+            &node.pos,
+            format!("{}: give only one of 'position' and 'to_world'", node.desc()),
+        )),
+        (Some(pos), None) => Ok(Transform::translate(pos)),
+        (None, Some(t)) => Ok(t),
+        (None, None) => Ok(Transform::IDENTITY),
+    }
+}
+
+/// An emitter declared at the scene level.
+pub(crate) fn build_standalone(node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let emitter = match node.plugin_type.as_str() {
+        "point" => {
+            let intensity = p.get_spectrum("intensity")?.unwrap_or(Spectrum::ONE);
+            check_non_negative(node, "intensity", intensity)?;
+            let to_world = position_or_to_world(node)?;
+            Emitter::Point(PointLight::new(to_world.point(Vec3::ZERO), intensity))
+        }
+        "spot" => {
+            let intensity = p.get_spectrum("intensity")?.unwrap_or(Spectrum::ONE);
+            check_non_negative(node, "intensity", intensity)?;
+            let cutoff = p.get_float("cutoff_angle")?.unwrap_or(20.0);
+            let beam = p.get_float("beam_width")?.unwrap_or(cutoff * 0.75);
+            let to_world = p.get_transform("to_world")?.unwrap_or_default();
+            Emitter::Spot(SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians()).map_err(at(node))?)
+        }
+        "directional" => {
+            let irradiance = p.get_spectrum("irradiance")?.unwrap_or(Spectrum::ONE);
+            check_non_negative(node, "irradiance", irradiance)?;
+            let direction = match (p.get_vector("direction")?, p.get_transform("to_world")?) {
+                (Some(_), Some(_)) => {
+                    return Err(LoadError::at(&node.pos, format!("{}: give only one of 'direction' and 'to_world'", node.desc())))
+                }
+                (Some(d), None) => d,
+                (None, Some(t)) => t.vector(Vec3::Z),
+                (None, None) => Vec3::Z,
+            };
+            Emitter::Directional(DirectionalLight::new(direction, irradiance).map_err(at(node))?)
+        }
+        "constant" => {
+            let radiance = p.get_spectrum("radiance")?.unwrap_or(Spectrum::ONE);
+            check_non_negative(node, "radiance", radiance)?;
+            Emitter::Constant(ConstantEnvironment::new(radiance))
+        }
+        "area" => {
+            return Err(LoadError::at(&node.pos, "an 'area' emitter must be nested inside the <shape> that emits"));
+        }
+        _ => return Err(unknown_type(node, STANDALONE)),
+    };
+    node.check_all_used()?;
+    Ok(emitter)
+}

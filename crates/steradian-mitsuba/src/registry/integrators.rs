@@ -1,0 +1,48 @@
+//! Integrator plugins: `path`, `direct`.
+
+use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
+use steradian::integrator::{parse_max_depth, EmitterVisibility};
+
+use super::{at, unknown_type};
+use crate::error::LoadError;
+use crate::xml::PluginNode;
+
+const KNOWN: &[&str] = &["path", "direct"];
+
+fn visibility(hide: Option<bool>) -> EmitterVisibility {
+    if hide.unwrap_or(false) {
+        EmitterVisibility::Hidden
+    } else {
+        EmitterVisibility::Visible
+    }
+}
+
+fn count(node: &PluginNode, name: &str, default: i64) -> Result<u32, LoadError> {
+    let v = node.props.get_int(name)?.unwrap_or(default);
+    u32::try_from(v).map_err(|_| {
+        LoadError::at(node.props.position(name).unwrap_or(&node.pos), format!("{}: '{name}' must be >= 0, got {v}", node.desc()))
+    })
+}
+
+pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
+    let p = &node.props;
+    let integrator = match node.plugin_type.as_str() {
+        "path" => {
+            let max_depth = parse_max_depth(p.get_int("max_depth")?.unwrap_or(-1)).map_err(at(node))?;
+            let rr_depth = count(node, "rr_depth", 5)?;
+            if rr_depth == 0 {
+                return Err(LoadError::at(p.position("rr_depth").unwrap_or(&node.pos), "rr_depth must be at least 1"));
+            }
+            Integrator::Path(PathTracer { max_depth, rr_depth, emitters: visibility(p.get_bool("hide_emitters")?) })
+        }
+        "direct" => {
+            let shading = count(node, "shading_samples", 1)?;
+            let emitter_samples = count(node, "emitter_samples", shading as i64)?;
+            let bsdf_samples = count(node, "bsdf_samples", shading as i64)?;
+            Integrator::Direct(DirectIntegrator { emitter_samples, bsdf_samples, emitters: visibility(p.get_bool("hide_emitters")?) })
+        }
+        _ => return Err(unknown_type(node, KNOWN)),
+    };
+    node.check_all_used()?;
+    Ok(integrator)
+}

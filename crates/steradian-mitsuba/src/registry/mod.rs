@@ -1,0 +1,151 @@
+//! The plugin registry: turns the parsed tree into the core renderer's [`Scene`].
+//!
+//! Each node is built by the function for its tag and `type` (one file per plugin family),
+//! which reads its properties through the typed accessors and takes its children; afterwards
+//! [`PluginNode::check_all_used`] makes anything the plugin did not read an error, as
+//! Mitsuba's "unreferenced property" is. An object referenced several times (`<ref>`) is built
+//! once and shared.
+
+mod bsdfs;
+mod emitters;
+mod integrators;
+mod sensors;
+mod shapes;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use steradian::bsdf::Bsdf;
+use steradian::scene::{Scene, SceneDescription};
+
+use crate::error::LoadError;
+use crate::xml::{ObjectTag, PluginNode, SceneNode};
+
+/// State while a scene is assembled.
+pub(crate) struct Builder {
+    desc: SceneDescription,
+    /// BSDFs already built, by node identity (shared through `<ref>`).
+    bsdf_cache: HashMap<*const PluginNode, u32>,
+    default_bsdf: Option<u32>,
+    black_bsdf: Option<u32>,
+    /// Directory for relative paths when the scene did not come from a file.
+    base_dir: PathBuf,
+}
+
+impl Builder {
+    /// The directory relative file names in `node` are resolved against: that of the file
+    /// the element was written in (includes have their own), else the loader's base.
+    pub(crate) fn resolve_path(&self, node: &PluginNode, file: &str) -> PathBuf {
+        let p = Path::new(file);
+        if p.is_absolute() {
+            return p.to_path_buf();
+        }
+        let dir = node.pos.file.parent().filter(|d| node.pos.file.is_file() && !d.as_os_str().is_empty());
+        match dir {
+            Some(d) => d.join(p),
+            None if node.pos.file.is_file() => p.to_path_buf(),
+            None => self.base_dir.join(p),
+        }
+    }
+
+    fn add_bsdf(&mut self, bsdf: Bsdf) -> u32 {
+        self.desc.bsdfs.push(bsdf);
+        (self.desc.bsdfs.len() - 1) as u32
+    }
+
+    /// The BSDF of `node`, built once.
+    pub(crate) fn bsdf_index(&mut self, node: &Arc<PluginNode>) -> Result<u32, LoadError> {
+        let key = Arc::as_ptr(node);
+        if let Some(&i) = self.bsdf_cache.get(&key) {
+            return Ok(i);
+        }
+        let bsdf = bsdfs::build(node)?;
+        let i = self.add_bsdf(bsdf);
+        self.bsdf_cache.insert(key, i);
+        Ok(i)
+    }
+
+    /// Mitsuba's BSDF for a shape without one: `diffuse` 0.5, or black for emitters.
+    pub(crate) fn implicit_bsdf(&mut self, emitting: bool) -> u32 {
+        if emitting {
+            if let Some(i) = self.black_bsdf {
+                return i;
+            }
+            let i = self.add_bsdf(Bsdf::black());
+            self.black_bsdf = Some(i);
+            i
+        } else {
+            if let Some(i) = self.default_bsdf {
+                return i;
+            }
+            let i = self.add_bsdf(Bsdf::default_diffuse());
+            self.default_bsdf = Some(i);
+            i
+        }
+    }
+}
+
+/// An error for a plugin `type` steradian does not know.
+pub(crate) fn unknown_type(node: &PluginNode, known: &[&str]) -> LoadError {
+    LoadError::at(
+        &node.pos,
+        format!("unknown {} plugin type '{}' (steradian knows: {})", node.tag.name(), node.plugin_type, known.join(", ")),
+    )
+}
+
+/// Converts a core-library error message into a loader error at `node`.
+pub(crate) fn at(node: &PluginNode) -> impl Fn(String) -> LoadError + '_ {
+    move |msg| LoadError::at(&node.pos, format!("{}: {msg}", node.desc()))
+}
+
+/// Builds the renderable scene from a parsed tree.
+pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError> {
+    let root: &PluginNode = &tree.root;
+    let mut b = Builder {
+        desc: SceneDescription::default(),
+        bsdf_cache: HashMap::new(),
+        default_bsdf: None,
+        black_bsdf: None,
+        base_dir: base_dir.to_path_buf(),
+    };
+    let mut integrator_pos = None;
+    for child in &root.children {
+        child.mark_used();
+        let node = &child.node;
+        match node.tag {
+            ObjectTag::Shape => shapes::build(&mut b, node)?,
+            ObjectTag::Bsdf => {
+                b.bsdf_index(node)?;
+            }
+            ObjectTag::Emitter => {
+                let e = emitters::build_standalone(node)?;
+                b.desc.emitters.push(e);
+            }
+            ObjectTag::Sensor => {
+                let s = sensors::build(node)?;
+                b.desc.sensors.push(s);
+            }
+            ObjectTag::Integrator => {
+                if let Some(first) = integrator_pos.replace(node.pos.clone()) {
+                    return Err(LoadError::at(&node.pos, format!("a scene has one integrator; the first is at {first}")));
+                }
+                b.desc.integrator = Some(integrators::build(node)?);
+            }
+            tag => {
+                return Err(LoadError::at(
+                    &node.pos,
+                    format!("<{}> objects are not supported at the scene level by steradian yet", tag.name()),
+                ))
+            }
+        }
+    }
+    root.check_all_used()?;
+    if b.desc.integrator.is_none() {
+        return Err(LoadError::at(
+            &root.pos,
+            "the scene has no <integrator> (Mitsuba 3 gives none by default; add e.g. <integrator type=\"path\"/>)",
+        ));
+    }
+    Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))
+}

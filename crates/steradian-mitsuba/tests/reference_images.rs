@@ -1,0 +1,55 @@
+//! Renders the shared reference scenes and compares them with Mitsuba 3.9.1's converged
+//! renders (4096–8192 spp, copied into `tests/reference/`).
+//!
+//! relMSE = mean((a − b)² / (b² + 0.01)) over pixels and channels. At 256 spp steradian's
+//! noise alone gives roughly a quarter of Mitsuba's 64-spp relMSE (../PERF.md figures:
+//! cornell 1.27e-3, furnace 4.0e-4, pointlight 2.0e-4), plus the references' own noise floor;
+//! the bounds below are those the issue sets, about twice the expected noise. A biased
+//! renderer fails them; so does one that gets a convention (camera, units, one-sidedness)
+//! wrong. Channel means must agree within 0.5 %.
+
+use std::path::PathBuf;
+
+use steradian::film::{read_exr, rel_mse, Image};
+use steradian::integrator::{render, RenderOptions};
+
+fn data(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference").join(name)
+}
+
+fn render_scene(name: &str, spp: u32) -> Image {
+    let scene = steradian_mitsuba::load_file(&data(&format!("{name}.xml")), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let out = render(&scene, &RenderOptions { spp: Some(spp), seed: Some(1), ..Default::default() }).unwrap();
+    assert_eq!(out.spp, spp);
+    assert_eq!(out.dropped_samples, 0, "NaN/Inf samples in {name}");
+    out.film.develop()
+}
+
+fn compare(name: &str, spp: u32, max_rel_mse: f64, max_mean_error: f64) {
+    let img = render_scene(name, spp);
+    let reference = read_exr(&data(&format!("{name}-ref.exr"))).unwrap();
+    assert_eq!((img.width, img.height), (reference.width, reference.height));
+    let e = rel_mse(&img, &reference);
+    let (m, r) = (img.channel_means(), reference.channel_means());
+    let ratios: Vec<f64> = (0..3).map(|c| m[c] / r[c]).collect();
+    eprintln!("{name} @ {spp} spp: relMSE {e:.3e} (bound {max_rel_mse:.1e}), mean ratios {ratios:.5?}");
+    assert!(e <= max_rel_mse, "{name}: relMSE {e:.3e} exceeds {max_rel_mse:.1e}");
+    for (c, ratio) in ratios.iter().enumerate() {
+        assert!((ratio - 1.0).abs() <= max_mean_error, "{name}: channel {c} mean ratio {ratio:.5} off by more than {max_mean_error}");
+    }
+}
+
+#[test]
+fn cornell_matches_mitsuba() {
+    compare("cornell", 256, 6.7e-4, 0.005);
+}
+
+#[test]
+fn furnace_matches_mitsuba() {
+    compare("furnace", 256, 2.0e-4, 0.005);
+}
+
+#[test]
+fn pointlight_matches_mitsuba() {
+    compare("pointlight", 256, 1.0e-4, 0.005);
+}

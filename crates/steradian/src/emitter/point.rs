@@ -1,0 +1,37 @@
+//! `point`: an isotropic point light.
+//!
+//! | parameter   | type     | default | unit |
+//! |-------------|----------|---------|------|
+//! | `intensity` | spectrum | 1       | W/sr (radiant intensity, not power) |
+//! | `position`  | point    | (0,0,0) | m; or the translation of `to_world` |
+//!
+//! Irradiance at distance r on a surface whose normal makes angle θ with the direction to the
+//! light: H = I·cos θ / r². Flux Φ = 4π·I.
+
+use glam::Vec3;
+
+use super::{EmitterSample, Support};
+use crate::Spectrum;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct PointLight {
+    pub position: Vec3,
+    pub intensity: Spectrum,
+}
+
+impl PointLight {
+    pub fn new(position: Vec3, intensity: Spectrum) -> Self {
+        PointLight { position, intensity }
+    }
+
+    #[inline]
+    pub fn sample_direction(&self, p: Vec3) -> Option<EmitterSample> {
+        let d = self.position - p;
+        let dist2 = d.length_squared();
+        if !(dist2 > 0.0) {
+            return None;
+        }
+        let dist = dist2.sqrt();
+        Some(EmitterSample { wi: d / dist, dist, pdf: 1.0, weight: self.intensity / dist2, support: Support::Delta })
+    }
+}

@@ -1,0 +1,101 @@
+//! `direct`: direct illumination only (one bounce from the camera).
+//!
+//! | parameter         | type    | default        | meaning |
+//! |-------------------|---------|----------------|---------|
+//! | `shading_samples` | integer | 1              | sets both counts below at once |
+//! | `emitter_samples` | integer | shading_samples| light samples per camera ray |
+//! | `bsdf_samples`    | integer | shading_samples| BSDF samples per camera ray |
+//! | `hide_emitters`   | boolean | false          | emitters seen directly contribute nothing |
+//!
+//! Light samples and BSDF samples are combined with the power heuristic, each strategy weighted
+//! by its sample count, as Mitsuba 3's `direct` does.
+
+use glam::{Vec2, Vec3};
+
+use super::mis::power_heuristic;
+use super::path::EmitterVisibility;
+use crate::bsdf::{Lobe, ShadingPoint};
+use crate::emitter::Support;
+use crate::geometry::Ray;
+use crate::sampling::PixelSampler;
+use crate::scene::Scene;
+use crate::Spectrum;
+
+#[derive(Clone, Debug, PartialEq)]
+pub struct DirectIntegrator {
+    pub emitter_samples: u32,
+    pub bsdf_samples: u32,
+    pub emitters: EmitterVisibility,
+}
+
+impl Default for DirectIntegrator {
+    fn default() -> Self {
+        DirectIntegrator { emitter_samples: 1, bsdf_samples: 1, emitters: EmitterVisibility::Visible }
+    }
+}
+
+impl DirectIntegrator {
+    pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
+        let show = self.emitters == EmitterVisibility::Visible;
+        let Some(si) = scene.intersect(ray) else {
+            return match (scene.environment, show) {
+                (Some(env), true) => scene.emitters[env as usize].radiance(-ray.d, Vec3::ZERO, Vec2::ZERO),
+                _ => Spectrum::ZERO,
+            };
+        };
+        let mut result = Spectrum::ZERO;
+        if let (Some((_, emitter)), true) = (scene.area_emitter(&si), show) {
+            result += emitter.radiance(si.wo, si.n, si.uv);
+        }
+        let bsdf = scene.bsdf(&si);
+        let sp = ShadingPoint { uv: si.uv };
+        let wo = si.to_local(si.wo);
+        let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
+
+        if bsdf.has_smooth_lobe() {
+            for _ in 0..self.emitter_samples {
+                let Some(es) = scene.sample_emitter_direction(si.p, si.n, sampler.next_2d()) else { continue };
+                let wi = si.to_local(es.wi);
+                let f = bsdf.eval(&sp, wo, wi) * wi.z.abs();
+                if f == Spectrum::ZERO {
+                    continue;
+                }
+                let w = match es.support {
+                    Support::Delta => 1.0,
+                    Support::Extended if nb > 0.0 => power_heuristic(es.pdf * ne, bsdf.pdf(&sp, wo, wi) * nb),
+                    Support::Extended => 1.0,
+                };
+                result += f * es.weight * (w / ne);
+            }
+        }
+
+        for _ in 0..self.bsdf_samples {
+            let u1 = sampler.next_1d();
+            let Some(bs) = bsdf.sample(&sp, wo, u1, sampler.next_2d()) else { continue };
+            let d = si.to_world(bs.wi).normalize();
+            let next = si.spawn_ray(d);
+            let (le, e, p_light, n_light) = match scene.intersect(&next) {
+                Some(hit) => match scene.area_emitter(&hit) {
+                    Some((e, emitter)) => (emitter.radiance(hit.wo, hit.n, hit.uv), e, hit.p, hit.n),
+                    None => continue,
+                },
+                None => match scene.environment {
+                    Some(env) => (scene.emitters[env as usize].radiance(-d, Vec3::ZERO, Vec2::ZERO), env, Vec3::ZERO, Vec3::ZERO),
+                    None => continue,
+                },
+            };
+            if le == Spectrum::ZERO {
+                continue;
+            }
+            let w = match bs.lobe {
+                Lobe::Delta => 1.0,
+                Lobe::Smooth if ne > 0.0 && bsdf.has_smooth_lobe() => {
+                    power_heuristic(bs.pdf * nb, scene.pdf_emitter_direction(e, si.p, d, p_light, n_light) * ne)
+                }
+                Lobe::Smooth => 1.0,
+            };
+            result += bs.weight * le * (w / nb);
+        }
+        result
+    }
+}

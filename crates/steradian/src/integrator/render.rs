@@ -1,0 +1,198 @@
+//! The image driver: splits the film into tiles, renders them on all cores, and splats every
+//! sample into the film through the reconstruction filter.
+//!
+//! Work is organised in *passes*: each pass adds the same number of samples to every pixel,
+//! and the film only ever holds complete passes. Stopping early (Ctrl-C) therefore still
+//! yields an image with the same sample count everywhere. Every sample's random numbers are
+//! addressed by (pixel, sample index, seed), and tiles are merged in a fixed order, so the
+//! image is bit-for-bit the same for any thread count.
+
+use std::fmt;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
+use std::time::{Duration, Instant};
+
+use glam::{UVec2, Vec2};
+use rayon::prelude::*;
+
+use crate::film::{Film, ImageBlock};
+use crate::scene::Scene;
+
+/// Side of a square render tile, pixels.
+const TILE: u32 = 32;
+/// At most this many passes per render (more passes: finer progress and interruption, more
+/// merging).
+const MAX_PASSES: u32 = 16;
+
+/// How far a render has come.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Progress {
+    /// Samples finished so far (all pixels).
+    pub samples_done: u64,
+    pub samples_total: u64,
+    pub elapsed: Duration,
+}
+
+/// Options of one render.
+#[derive(Default)]
+pub struct RenderOptions<'a> {
+    /// Samples per pixel; `None` = the sensor's sampler's `sample_count`.
+    pub spp: Option<u32>,
+    /// Seed; `None` = the sensor's sampler's seed.
+    pub seed: Option<u64>,
+    /// Worker threads; `None` = all cores.
+    pub threads: Option<usize>,
+    /// Which sensor; `None` = the first.
+    pub sensor: Option<usize>,
+    /// Set to stop early; the passes finished so far are kept.
+    pub cancel: Option<&'a AtomicBool>,
+    /// Called from worker threads as tiles finish.
+    pub progress: Option<&'a (dyn Fn(Progress) + Sync)>,
+}
+
+/// The result of a render.
+#[derive(Debug)]
+pub struct RenderOutput {
+    pub film: Film,
+    /// Samples per pixel actually in the film.
+    pub spp: u32,
+    pub spp_requested: u32,
+    /// Samples whose value was NaN or infinite: dropped, never splatted.
+    pub dropped_samples: u64,
+    pub elapsed: Duration,
+    pub interrupted: bool,
+}
+
+impl RenderOutput {
+    /// Samples in the film (pixels × spp).
+    pub fn samples(&self) -> u64 {
+        self.film.width as u64 * self.film.height as u64 * self.spp as u64
+    }
+}
+
+#[derive(Debug, Clone, PartialEq)]
+pub enum RenderError {
+    NoSensor,
+    BadSensor(usize),
+    ThreadPool(String),
+}
+
+impl fmt::Display for RenderError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            RenderError::NoSensor => write!(f, "the scene has no sensor to render"),
+            RenderError::BadSensor(i) => write!(f, "the scene has no sensor number {i}"),
+            RenderError::ThreadPool(e) => write!(f, "could not start worker threads: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for RenderError {}
+
+/// Renders the scene's sensor into a film.
+pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, RenderError> {
+    let sensor_index = opts.sensor.unwrap_or(0);
+    if scene.sensors.is_empty() {
+        return Err(RenderError::NoSensor);
+    }
+    let sensor = scene.sensors.get(sensor_index).ok_or(RenderError::BadSensor(sensor_index))?;
+    let mut sampler = sensor.sampler;
+    if let Some(spp) = opts.spp {
+        sampler.sample_count = spp;
+    }
+    if let Some(seed) = opts.seed {
+        sampler.seed = seed;
+    }
+    let spp = sampler.sample_count;
+    let mut film = sensor.film.clone();
+    film.clear();
+    let (width, height) = (film.width, film.height);
+    let tiles: Vec<(UVec2, UVec2)> = (0..height.div_ceil(TILE))
+        .flat_map(|ty| (0..width.div_ceil(TILE)).map(move |tx| (tx, ty)))
+        .map(|(tx, ty)| {
+            let o = UVec2::new(tx * TILE, ty * TILE);
+            (o, UVec2::new(TILE.min(width - o.x), TILE.min(height - o.y)))
+        })
+        .collect();
+
+    let passes = spp.clamp(1, MAX_PASSES);
+    let start = Instant::now();
+    let samples_total = width as u64 * height as u64 * spp as u64;
+    let samples_done = AtomicU64::new(0);
+    let dropped = AtomicU64::new(0);
+    let cancelled = || opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads.unwrap_or(0))
+        .build()
+        .map_err(|e| RenderError::ThreadPool(e.to_string()))?;
+
+    let mut spp_done = 0u32;
+    let mut interrupted = false;
+    for pass in 0..passes {
+        // samples [first, last) of every pixel
+        let first = (spp as u64 * pass as u64 / passes as u64) as u32;
+        let last = (spp as u64 * (pass as u64 + 1) / passes as u64) as u32;
+        if last == first {
+            continue;
+        }
+        let blocks: Option<Vec<ImageBlock>> = pool.install(|| {
+            tiles
+                .par_iter()
+                .map(|&(offset, size)| {
+                    if cancelled() {
+                        return None;
+                    }
+                    let mut block = film.create_block(offset, size);
+                    let mut bad = 0u64;
+                    for y in offset.y..offset.y + size.y {
+                        for x in offset.x..offset.x + size.x {
+                            let pixel = UVec2::new(x, y);
+                            for index in first..last {
+                                let mut s = sampler.pixel_sampler(pixel, width, index);
+                                let pos = pixel.as_vec2() + s.next_2d();
+                                let film_uv = pos / Vec2::new(width as f32, height as f32);
+                                let aperture = s.next_2d();
+                                let ray = sensor.sample_ray(film_uv, aperture);
+                                let l = scene.integrator.li(scene, &ray, &mut s);
+                                if l.is_finite() {
+                                    block.put(pos, l);
+                                } else {
+                                    bad += 1;
+                                }
+                            }
+                        }
+                    }
+                    if bad > 0 {
+                        dropped.fetch_add(bad, Ordering::Relaxed);
+                    }
+                    let n = size.x as u64 * size.y as u64 * (last - first) as u64;
+                    let done = samples_done.fetch_add(n, Ordering::Relaxed) + n;
+                    if let Some(cb) = opts.progress {
+                        cb(Progress { samples_done: done, samples_total, elapsed: start.elapsed() });
+                    }
+                    Some(block)
+                })
+                .collect()
+        });
+        match blocks {
+            Some(blocks) => {
+                for b in &blocks {
+                    film.merge(b);
+                }
+                spp_done = last;
+            }
+            None => {
+                interrupted = true;
+                break;
+            }
+        }
+    }
+    Ok(RenderOutput {
+        film,
+        spp: spp_done,
+        spp_requested: spp,
+        dropped_samples: dropped.load(Ordering::Relaxed),
+        elapsed: start.elapsed(),
+        interrupted,
+    })
+}

@@ -1,0 +1,131 @@
+//! `perspective`: an ideal pinhole camera.
+//!
+//! | parameter        | type      | default   | meaning |
+//! |------------------|-----------|-----------|---------|
+//! | `to_world`       | transform | identity  | camera → world; rigid (a scale is an error). The camera looks along local +z with +y up; `lookat` is the usual way to set it |
+//! | `fov`            | float     | —         | field of view in degrees along `fov_axis`, in (0, 180) |
+//! | `fov_axis`       | string    | `x`       | `x`, `y`, `diagonal`, `smaller` or `larger` |
+//! | `focal_length`   | string    | `50mm`    | alternative to `fov`: 35 mm-equivalent focal length, applied to the diagonal |
+//! | `near_clip`      | float     | 0.01      | m; rays start on the near plane |
+//! | `far_clip`       | float     | 10000     | m |
+//! | `focus_distance` | float     | far_clip  | accepted for compatibility; a pinhole is always in focus |
+//! | film, sampler    | children  | `hdrfilm`, `independent` | |
+//!
+//! Pixel (0,0) is the top-left of the image; image x grows towards the camera's right (local
+//! −x, since Mitsuba's local +x points left) and image y downwards. For a film position
+//! (sx, sy) ∈ [0,1]², the ray direction in camera space is proportional to
+//! ((1 − 2sx)·tan(fov_x/2), (1 − 2sy)·tan(fov_x/2)/aspect, 1).
+
+use glam::{Vec2, Vec3};
+
+use crate::geometry::{Ray, Transform};
+
+#[derive(Clone, Debug)]
+pub struct Perspective {
+    pub to_world: Transform,
+    /// tan of half the field of view along x and y.
+    tan_half: Vec2,
+    pub near_clip: f32,
+    pub far_clip: f32,
+}
+
+/// Checks the camera transform is rigid and the clip planes are sane.
+pub(super) fn validate(to_world: &Transform, near_clip: f32, far_clip: f32) -> Result<(), String> {
+    let s = to_world.axis_scales();
+    if (s - Vec3::ONE).abs().max_element() > 1e-3 {
+        return Err(format!("scale factors in the camera's to_world are not allowed (axis scales {:.4}, {:.4}, {:.4})", s.x, s.y, s.z));
+    }
+    if !(near_clip > 0.0 && near_clip.is_finite()) {
+        return Err(format!("near_clip must be positive, got {near_clip}"));
+    }
+    if !(far_clip > near_clip) {
+        return Err(format!("far_clip ({far_clip}) must exceed near_clip ({near_clip})"));
+    }
+    Ok(())
+}
+
+impl Perspective {
+    /// `x_fov` in radians (see [`super::FieldOfView::x_fov`]); `aspect` = width/height.
+    pub fn new(to_world: Transform, x_fov: f32, aspect: f32, near_clip: f32, far_clip: f32) -> Result<Self, String> {
+        validate(&to_world, near_clip, far_clip)?;
+        let tx = (x_fov / 2.0).tan();
+        Ok(Perspective { to_world, tan_half: Vec2::new(tx, tx / aspect), near_clip, far_clip })
+    }
+
+    /// Unnormalised camera-space direction through film position `film_uv`.
+    #[inline]
+    pub(super) fn local_direction(tan_half: Vec2, film_uv: Vec2) -> Vec3 {
+        Vec3::new((1.0 - 2.0 * film_uv.x) * tan_half.x, (1.0 - 2.0 * film_uv.y) * tan_half.y, 1.0)
+    }
+
+    #[inline]
+    pub fn tan_half(&self) -> Vec2 {
+        self.tan_half
+    }
+
+    #[inline]
+    pub fn sample_ray(&self, film_uv: Vec2) -> Ray {
+        let d = Self::local_direction(self.tan_half, film_uv).normalize();
+        // rays start on the near plane and end on the far plane (both are z = const planes)
+        let inv_z = 1.0 / d.z;
+        let (near_t, far_t) = (self.near_clip * inv_z, self.far_clip * inv_z);
+        let d_world = self.to_world.vector(d).normalize();
+        Ray::new(self.to_world.point(Vec3::ZERO) + d_world * near_t, d_world, far_t - near_t)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn camera() -> Perspective {
+        // the cornell camera: at (0,0,3.9) looking at the origin, y up, 256×256
+        let tw = Transform::look_at(Vec3::new(0.0, 0.0, 3.9), Vec3::ZERO, Vec3::Y).unwrap();
+        Perspective::new(tw, 39.3077f32.to_radians(), 1.0, 0.001, 100.0).unwrap()
+    }
+
+    #[test]
+    fn centre_pixel_looks_at_the_target_from_the_near_plane() {
+        let r = camera().sample_ray(Vec2::splat(0.5));
+        assert!((r.d - Vec3::new(0.0, 0.0, -1.0)).length() < 1e-6);
+        assert!((r.o - Vec3::new(0.0, 0.0, 3.9 - 0.001)).length() < 1e-6);
+        assert!((r.t_max - (100.0 - 0.001)).abs() < 1e-3);
+    }
+
+    #[test]
+    fn image_axes_follow_mitsuba() {
+        let c = camera();
+        // top-left film corner: up (+y) and to the image's left; the camera faces −z with +y
+        // up, so its right is +x and the image's left is −x in world space.
+        let r = c.sample_ray(Vec2::new(0.0, 0.0));
+        assert!(r.d.y > 0.0 && r.d.x < 0.0, "{:?}", r.d);
+        let r = c.sample_ray(Vec2::new(1.0, 1.0));
+        assert!(r.d.y < 0.0 && r.d.x > 0.0);
+        // the right edge of the image is at half the horizontal fov
+        let r = c.sample_ray(Vec2::new(1.0, 0.5));
+        let angle = r.d.dot(Vec3::new(0.0, 0.0, -1.0)).acos().to_degrees();
+        assert!((angle - 39.3077 / 2.0).abs() < 1e-3, "{angle}");
+    }
+
+    #[test]
+    fn projects_a_known_point_to_its_pixel() {
+        // A world point projects back onto the film position whose ray passes through it.
+        let c = camera();
+        let p = Vec3::new(0.3, -0.2, 0.5);
+        let local = c.to_world.inverse().point(p);
+        let t = c.tan_half();
+        let sx = 0.5 * (1.0 - local.x / local.z / t.x);
+        let sy = 0.5 * (1.0 - local.y / local.z / t.y);
+        let r = c.sample_ray(Vec2::new(sx, sy));
+        let to_p = (p - r.o).normalize();
+        assert!((to_p - r.d).length() < 1e-5);
+    }
+
+    #[test]
+    fn scaled_camera_is_refused() {
+        let tw = Transform::scale(Vec3::splat(2.0)).unwrap();
+        assert!(Perspective::new(tw, 1.0, 1.0, 0.01, 100.0).is_err());
+        assert!(Perspective::new(Transform::IDENTITY, 1.0, 1.0, 0.0, 100.0).is_err());
+        assert!(Perspective::new(Transform::IDENTITY, 1.0, 1.0, 1.0, 0.5).is_err());
+    }
+}

@@ -70,3 +70,4 @@ pub fn load_string(xml: &str, name: &Path, base_dir: &Path, defines: &[(String, 
     let tree = xml::parse_string_named(xml, name, base_dir, defines)?;
     build_scene(&tree, base_dir)
 }
+pub mod verify;

@@ -9,7 +9,7 @@
 mod bsdfs;
 mod emitters;
 mod integrators;
-mod sensors;
+pub(crate) mod sensors;
 mod shapes;
 
 use std::collections::HashMap;
@@ -123,7 +123,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError
                 b.desc.emitters.push(e);
             }
             ObjectTag::Sensor => {
-                let s = sensors::build(node)?;
+                let s = sensors::build(node, None)?;
                 b.desc.sensors.push(s);
             }
             ObjectTag::Integrator => {

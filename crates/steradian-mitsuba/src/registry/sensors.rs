@@ -4,13 +4,13 @@
 
 use steradian::film::{BoxFilter, ComponentFormat, Film, GaussianFilter, ReconstructionFilter, TentFilter};
 use steradian::sampling::{Sampler, SamplerKind};
-use steradian::sensor::{FieldOfView, FovAxis, Perspective, Sensor, SensorKind, ThinLens};
+use steradian::sensor::{FieldOfView, FovAxis, IrradianceMeter, Perspective, RadianceMeter, Sensor, SensorKind, ThinLens};
 
 use super::{at, unknown_type};
 use crate::error::LoadError;
 use crate::xml::{ObjectTag, PluginNode};
 
-const KNOWN: &[&str] = &["perspective", "thinlens"];
+const KNOWN: &[&str] = &["perspective", "thinlens", "radiancemeter", "irradiancemeter"];
 
 fn single_child<'a>(node: &'a PluginNode, tag: ObjectTag) -> Result<Option<&'a PluginNode>, LoadError> {
     let c = node.children_of(tag);
@@ -112,7 +112,8 @@ fn parse_focal_length(node: &PluginNode, s: &str) -> Result<f32, LoadError> {
     })
 }
 
-pub(crate) fn build(node: &PluginNode) -> Result<Sensor, LoadError> {
+/// Builds a sensor; `shape` is the enclosing shape for an `irradiancemeter`.
+pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, LoadError> {
     if !KNOWN.contains(&node.plugin_type.as_str()) {
         return Err(unknown_type(node, KNOWN));
     }
@@ -125,6 +126,40 @@ pub(crate) fn build(node: &PluginNode) -> Result<Sensor, LoadError> {
         Some(s) => build_sampler(s)?,
         None => Sampler::default(),
     };
+    let id = node.id.clone().unwrap_or_default();
+    let meter_film = |film: &Film| -> Result<(), LoadError> {
+        if (film.width, film.height) != (1, 1) {
+            return Err(LoadError::at(&node.pos, format!("{}: a meter needs a 1x1 film, got {}x{}", node.desc(), film.width, film.height)));
+        }
+        Ok(())
+    };
+    match (node.plugin_type.as_str(), shape) {
+        ("irradiancemeter", None) => {
+            return Err(LoadError::at(&node.pos, "an irradiancemeter must be declared inside the <shape> it measures"));
+        }
+        ("irradiancemeter", Some(shape)) => {
+            meter_film(&film)?;
+            node.check_all_used()?;
+            return Ok(Sensor { kind: SensorKind::IrradianceMeter(IrradianceMeter { shape }), film, sampler, id });
+        }
+        (_, Some(_)) => {
+            return Err(LoadError::at(&node.pos, format!("only an irradiancemeter can be declared inside a shape, not {}", node.desc())));
+        }
+        ("radiancemeter", None) => {
+            meter_film(&film)?;
+            let meter = match (p.get_transform("to_world")?, p.get_point("origin")?, p.get_vector("direction")?) {
+                (Some(t), None, None) => RadianceMeter::from_transform(&t),
+                (None, Some(o), Some(d)) => RadianceMeter::new(o, d),
+                (None, None, None) => RadianceMeter::from_transform(&Default::default()),
+                (Some(_), _, _) => return Err(LoadError::at(&node.pos, "radiancemeter: give either 'to_world' or 'origin' and 'direction', not both")),
+                _ => return Err(LoadError::at(&node.pos, "radiancemeter: 'origin' and 'direction' go together")),
+            }
+            .map_err(at(node))?;
+            node.check_all_used()?;
+            return Ok(Sensor { kind: SensorKind::RadianceMeter(meter), film, sampler, id });
+        }
+        _ => {}
+    }
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let fov = match (p.get_float("fov")?, p.get_string("focal_length")?) {
         (Some(_), Some(_)) => return Err(LoadError::at(&node.pos, format!("{}: give only one of 'fov' and 'focal_length'", node.desc()))),
@@ -159,5 +194,5 @@ pub(crate) fn build(node: &PluginNode) -> Result<Sensor, LoadError> {
         _ => unreachable!("checked above"),
     };
     node.check_all_used()?;
-    Ok(Sensor { kind, film, sampler, id: node.id.clone().unwrap_or_default() })
+    Ok(Sensor { kind, film, sampler, id })
 }

@@ -83,6 +83,10 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
         Some(c) => b.bsdf_index(&c.node)?,
         None => b.implicit_bsdf(emitter.is_some()),
     };
+    for c in node.children_of(ObjectTag::Sensor) {
+        let sensor = super::sensors::build(&c.node, Some(shape_index))?;
+        b.desc.sensors.push(sensor);
+    }
     node.check_all_used()?;
     b.desc.shapes.push((shape, ShapeBinding { bsdf, emitter, id: node.id.clone().unwrap_or_default() }));
     Ok(())

@@ -2,13 +2,15 @@
 //! turns them into images.
 
 mod direct;
+mod irradiance;
 mod mis;
 mod path;
 mod render;
 
 pub use direct::DirectIntegrator;
+pub use irradiance::estimate_irradiance;
 pub use path::{parse_max_depth, EmitterVisibility, PathTracer};
-pub use render::{render, Progress, RenderError, RenderOptions, RenderOutput};
+pub use render::{render, PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};
 
 use crate::geometry::Ray;
 use crate::sampling::PixelSampler;

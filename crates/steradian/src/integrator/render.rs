@@ -15,13 +15,20 @@ use glam::{UVec2, Vec2};
 use rayon::prelude::*;
 
 use crate::film::{Film, ImageBlock};
+use crate::geometry::Ray;
+use crate::integrator::estimate_irradiance;
+use crate::sampling::PixelSampler;
 use crate::scene::Scene;
+use crate::sensor::Sensor;
+use crate::Spectrum;
 
 /// Side of a square render tile, pixels.
 const TILE: u32 = 32;
 /// At most this many passes per render (more passes: finer progress and interruption, more
 /// merging).
 const MAX_PASSES: u32 = 16;
+/// Work items per pass to aim for when the film has few tiles.
+const WORK_ITEMS_PER_PASS: u32 = 64;
 
 /// How far a render has come.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -30,6 +37,17 @@ pub struct Progress {
     pub samples_done: u64,
     pub samples_total: u64,
     pub elapsed: Duration,
+}
+
+/// What each pixel holds.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum PixelQuantity {
+    /// What the sensor measures (radiance for cameras, the meter's quantity for meters).
+    #[default]
+    Sensor,
+    /// The irradiance (W/m²) on the surface point each camera pixel sees, on the side facing
+    /// the camera (0 where the ray escapes): an irradiance map.
+    SurfaceIrradiance,
 }
 
 /// Options of one render.
@@ -45,6 +63,8 @@ pub struct RenderOptions<'a> {
     pub sensor: Option<usize>,
     /// Set to stop early; the passes finished so far are kept.
     pub cancel: Option<&'a AtomicBool>,
+    /// What each pixel holds.
+    pub quantity: PixelQuantity,
     /// Called from worker threads as tiles finish.
     pub progress: Option<&'a (dyn Fn(Progress) + Sync)>,
 }
@@ -73,6 +93,8 @@ impl RenderOutput {
 pub enum RenderError {
     NoSensor,
     BadSensor(usize),
+    /// An irradiance map needs a camera.
+    NotACamera,
     ThreadPool(String),
 }
 
@@ -81,6 +103,7 @@ impl fmt::Display for RenderError {
         match self {
             RenderError::NoSensor => write!(f, "the scene has no sensor to render"),
             RenderError::BadSensor(i) => write!(f, "the scene has no sensor number {i}"),
+            RenderError::NotACamera => write!(f, "irradiance maps need a camera sensor (perspective or thinlens), not a meter"),
             RenderError::ThreadPool(e) => write!(f, "could not start worker threads: {e}"),
         }
     }
@@ -103,6 +126,10 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
         sampler.seed = seed;
     }
     let spp = sampler.sample_count;
+    let meter = sensor.is_meter();
+    if opts.quantity == PixelQuantity::SurfaceIrradiance && meter {
+        return Err(RenderError::NotACamera);
+    }
     let mut film = sensor.film.clone();
     film.clear();
     let (width, height) = (film.width, film.height);
@@ -135,10 +162,26 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
         if last == first {
             continue;
         }
+        // Work items: tiles, each split into sample ranges when the film has few tiles (a 1×1
+        // meter film would otherwise keep one core busy). The split depends on the film and
+        // the pass only, never on the thread count, so images are reproducible.
+        let per_pass = last - first;
+        let chunks = (WORK_ITEMS_PER_PASS.div_ceil(tiles.len() as u32)).clamp(1, per_pass);
+        let items: Vec<(UVec2, UVec2, u32, u32)> = tiles
+            .iter()
+            .flat_map(|&(o, sz)| {
+                (0..chunks).map(move |c| {
+                    let a = first + (per_pass as u64 * c as u64 / chunks as u64) as u32;
+                    let b = first + (per_pass as u64 * (c as u64 + 1) / chunks as u64) as u32;
+                    (o, sz, a, b)
+                })
+            })
+            .filter(|&(_, _, a, b)| b > a)
+            .collect();
         let blocks: Option<Vec<ImageBlock>> = pool.install(|| {
-            tiles
+            items
                 .par_iter()
-                .map(|&(offset, size)| {
+                .map(|&(offset, size, s0, s1)| {
                     if cancelled() {
                         return None;
                     }
@@ -147,13 +190,18 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
                     for y in offset.y..offset.y + size.y {
                         for x in offset.x..offset.x + size.x {
                             let pixel = UVec2::new(x, y);
-                            for index in first..last {
+                            for index in s0..s1 {
                                 let mut s = sampler.pixel_sampler(pixel, width, index);
-                                let pos = pixel.as_vec2() + s.next_2d();
+                                let mut pos = pixel.as_vec2() + s.next_2d();
                                 let film_uv = pos / Vec2::new(width as f32, height as f32);
-                                let aperture = s.next_2d();
-                                let ray = sensor.sample_ray(film_uv, aperture);
-                                let l = scene.integrator.li(scene, &ray, &mut s);
+                                let l = match opts.quantity {
+                                    PixelQuantity::Sensor => sensor.measure(scene, &scene.integrator, film_uv, &mut s),
+                                    PixelQuantity::SurfaceIrradiance => surface_irradiance(scene, sensor, film_uv, &mut s),
+                                };
+                                if meter {
+                                    // meters ignore the film position: equal weights
+                                    pos = pixel.as_vec2() + Vec2::splat(0.5);
+                                }
                                 if l.is_finite() {
                                     block.put(pos, l);
                                 } else {
@@ -165,7 +213,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
                     if bad > 0 {
                         dropped.fetch_add(bad, Ordering::Relaxed);
                     }
-                    let n = size.x as u64 * size.y as u64 * (last - first) as u64;
+                    let n = size.x as u64 * size.y as u64 * (s1 - s0) as u64;
                     let done = samples_done.fetch_add(n, Ordering::Relaxed) + n;
                     if let Some(cb) = opts.progress {
                         cb(Progress { samples_done: done, samples_total, elapsed: start.elapsed() });
@@ -195,4 +243,12 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
         elapsed: start.elapsed(),
         interrupted,
     })
+}
+
+/// Irradiance on the surface seen through film position `film_uv`, on the camera's side.
+fn surface_irradiance(scene: &Scene, sensor: &Sensor, film_uv: Vec2, s: &mut PixelSampler) -> Spectrum {
+    let Some(ray): Option<Ray> = sensor.camera_ray(film_uv, s) else { return Spectrum::ZERO };
+    let Some(si) = scene.intersect(&ray) else { return Spectrum::ZERO };
+    let n = if si.n.dot(ray.d) < 0.0 { si.n } else { -si.n };
+    estimate_irradiance(scene, &scene.integrator, si.p, n, s)
 }

@@ -1,0 +1,117 @@
+//! The irradiance estimator shared by the `irradiancemeter` and irradiance maps.
+//!
+//! H(p, n) = ∫ L(ωi) cos θi dωi over the hemisphere around n (W/m²). L splits into light
+//! arriving straight from emitters and light reflected by other surfaces:
+//!
+//! - Emitted light is estimated by two strategies combined with the power heuristic: every
+//!   emitter is sampled once (delta lights contribute I·cos θ/r² or H·cos θ exactly, with
+//!   weight 1), and a cosine-weighted direction that happens to hit an emitter. The uniform
+//!   sky (`constant`) is the exception: for a radiance that is the same in every direction the
+//!   cosine-weighted strategy alone has zero variance wherever the sky is unoccluded, so it is
+//!   used alone (with weight 1) rather than diluted by uniform-sphere samples.
+//! - Reflected light along the cosine-weighted direction comes from the scene's integrator
+//!   with the first hit's own emission hidden, so `max_depth` keeps Mitsuba's meaning (1 =
+//!   emitters seen directly from the meter, 2 = one bounce, ...).
+
+use std::f32::consts::PI;
+
+use glam::{Vec2, Vec3};
+
+use super::mis::power_heuristic;
+use super::{EmitterVisibility, Integrator};
+use crate::emitter::Support;
+use crate::geometry::{offset_ray_origin, Frame, Ray};
+use crate::sampling::{warp, PixelSampler};
+use crate::scene::Scene;
+use crate::Spectrum;
+
+/// The integrator with emission at the first hit hidden, and how many segments remain.
+fn reflected_only(integrator: &Integrator) -> Option<Integrator> {
+    match integrator {
+        Integrator::Path(p) => {
+            if p.max_depth.is_some_and(|d| d <= 1) {
+                return None;
+            }
+            let mut p = p.clone();
+            p.emitters = EmitterVisibility::Hidden;
+            Some(Integrator::Path(p))
+        }
+        Integrator::Direct(d) => {
+            let mut d = d.clone();
+            d.emitters = EmitterVisibility::Hidden;
+            Some(Integrator::Direct(d))
+        }
+    }
+}
+
+/// One-sample estimate of the irradiance (W/m², per channel) at `p` on the side of the unit
+/// normal `n` (geometric normal of the surface, used to offset rays).
+pub fn estimate_irradiance(scene: &Scene, integrator: &Integrator, p: Vec3, n: Vec3, sampler: &mut PixelSampler) -> Spectrum {
+    if let Integrator::Path(pt) = integrator {
+        if pt.max_depth == Some(0) {
+            return Spectrum::ZERO;
+        }
+    }
+    let mut h = Spectrum::ZERO;
+    let cos_pdf = |wi: Vec3| n.dot(wi).max(0.0) / PI;
+
+    // 1. every emitter, sampled once
+    for emitter in scene.emitters.iter() {
+        let u = sampler.next_2d();
+        if emitter.is_environment() {
+            continue;
+        }
+        let Some(es) = emitter.sample_direction(&scene.shapes, p, u) else { continue };
+        let cos = n.dot(es.wi);
+        if cos <= 0.0 {
+            continue;
+        }
+        let origin = offset_ray_origin(p, n, es.wi);
+        let shadow = if es.dist.is_finite() {
+            let target = p + es.wi * es.dist;
+            let d = target - origin;
+            let dist = d.length();
+            Ray::new(origin, d / dist, dist * (1.0 - crate::geometry::interaction::SHADOW_EPSILON))
+        } else {
+            Ray::infinite(origin, es.wi)
+        };
+        if scene.occluded(&shadow) {
+            continue;
+        }
+        let w = match es.support {
+            Support::Delta => 1.0,
+            Support::Extended => power_heuristic(es.pdf, cos_pdf(es.wi)),
+        };
+        h += es.weight * cos * w;
+    }
+
+    // 2. a cosine-weighted direction: weight L·cos/pdf = π·L
+    let local = warp::square_to_cosine_hemisphere(sampler.next_2d());
+    if local.z <= 0.0 {
+        return h;
+    }
+    let wi = Frame::from_normal(n).to_world(local).normalize();
+    let pdf = cos_pdf(wi);
+    let ray = Ray::infinite(offset_ray_origin(p, n, wi), wi);
+    match scene.intersect(&ray) {
+        Some(hit) => {
+            if let Some((_, emitter)) = scene.area_emitter(&hit) {
+                let le = emitter.radiance(hit.wo, hit.n, hit.uv);
+                if le != Spectrum::ZERO {
+                    let pdf_e = emitter.pdf_direction(&scene.shapes, p, wi, hit.p, hit.n);
+                    h += le * (PI * power_heuristic(pdf, pdf_e));
+                }
+            }
+        }
+        None => {
+            if let Some(env) = scene.environment {
+                // the sky is not light-sampled here (see the module docs): weight 1
+                h += scene.emitters[env as usize].radiance(-wi, Vec3::ZERO, Vec2::ZERO) * PI;
+            }
+        }
+    }
+    if let Some(reflected) = reflected_only(integrator) {
+        h += reflected.li(scene, &ray, sampler) * PI;
+    }
+    h
+}

@@ -3,7 +3,9 @@
 //! A thin shell over the `steradian` and `steradian-mitsuba` libraries: argument parsing,
 //! progress display, file output and error reporting live here, nothing else.
 
+mod measure;
 mod render;
+mod verify;
 
 use std::process::ExitCode;
 
@@ -20,12 +22,19 @@ struct Cli {
 enum Command {
     /// Render a scene to OpenEXR (linear RGB radiance, W/(m²·sr)) plus an sRGB PNG preview.
     Render(render::RenderArgs),
+    /// Read a sensor (radiancemeter, irradiancemeter, or a camera's image mean) with its
+    /// standard error, in W/(m²·sr) or W/m².
+    Measure(measure::MeasureArgs),
+    /// Run the built-in closed-form radiometry suite and report each case's z-score.
+    Verify(verify::VerifyArgs),
 }
 
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
         Command::Render(args) => render::run(args),
+        Command::Measure(args) => measure::run(args),
+        Command::Verify(args) => verify::run(args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -8,7 +8,8 @@ use std::time::Duration;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use steradian::film::{write_exr, write_png};
-use steradian::integrator::{render, Progress, RenderOptions};
+use steradian::film::{false_color_png, Image};
+use steradian::integrator::{render, PixelQuantity, Progress, RenderOptions};
 
 /// The built-in scene, rendered when no scene file is given.
 const BUILTIN_SCENE: &str = include_str!("../../../scenes/cornell-box.xml");
@@ -37,9 +38,24 @@ pub struct RenderArgs {
     /// Worker threads (default: all cores).
     #[arg(long)]
     threads: Option<usize>,
+    /// What each pixel holds: `radiance` (W/(m²·sr), the default), `irradiance` (W/m² on the
+    /// surface each pixel sees) or `illuminance` (lux = 683 lm/W × luminance of the
+    /// irradiance). Maps also get a false-colour PNG with a labelled scale.
+    #[arg(long, value_enum, default_value_t = Quantity::Radiance)]
+    quantity: Quantity,
+    /// Also write the per-pixel standard error of the mean to this OpenEXR file.
+    #[arg(long, value_name = "FILE.exr")]
+    stderr: Option<PathBuf>,
     /// Do not show the progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Quantity {
+    Radiance,
+    Irradiance,
+    Illuminance,
 }
 
 pub fn parse_defines(defines: &[String]) -> Result<Vec<(String, String)>, String> {
@@ -117,14 +133,31 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         sensor,
         cancel: Some(&cancel),
         progress: Some(&progress),
+        quantity: match args.quantity {
+            Quantity::Radiance => PixelQuantity::Sensor,
+            Quantity::Irradiance | Quantity::Illuminance => PixelQuantity::SurfaceIrradiance,
+        },
     };
     let out = render(&scene, &opts).map_err(|e| e.to_string())?;
     bar.finish_and_clear();
 
-    let image = out.film.develop();
+    let mut image = out.film.develop();
+    let mut error = out.film.develop_stderr();
+    if args.quantity == Quantity::Illuminance {
+        image = to_illuminance(&image);
+        error = to_illuminance(&error);
+    }
     write_exr(&output, &image)?;
     let png = output.with_extension("png");
-    write_png(&png, &image, 1.0)?;
+    match args.quantity {
+        Quantity::Radiance => write_png(&png, &image, 1.0)?,
+        Quantity::Irradiance => false_color_png(&png, &image, "irradiance", "W/m²")?,
+        Quantity::Illuminance => false_color_png(&png, &image, "illuminance", "lx")?,
+    }
+    if let Some(path) = &args.stderr {
+        write_exr(path, &error)?;
+        println!("wrote the standard error of each pixel to {}", path.display());
+    }
 
     let secs = out.elapsed.as_secs_f64();
     if out.interrupted {
@@ -141,4 +174,16 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
     );
     println!("wrote {} and {}", output.display(), png.display());
     Ok(())
+}
+
+/// Illuminance (lx) from irradiance (W/m²): 683 lm/W × the luminance-weighted RGB, in all
+/// three channels. The standard error is mapped the same way, which treats the channels' errors
+/// as fully correlated (they come from the same light paths): an upper bound.
+fn to_illuminance(image: &Image) -> Image {
+    let mut out = image.clone();
+    for px in out.data.chunks_exact_mut(3) {
+        let y = 683.0 * steradian::spectrum::luminance(steradian::Vec3::new(px[0], px[1], px[2]));
+        px.fill(y);
+    }
+    out
 }

@@ -12,7 +12,7 @@ use crate::xml::{ObjectTag, PluginNode};
 
 const KNOWN: &[&str] = &["perspective", "thinlens"];
 
-fn single_child<'a>(node: &'a PluginNode, tag: ObjectTag) -> Result<Option<&'a PluginNode>, LoadError> {
+fn single_child(node: &PluginNode, tag: ObjectTag) -> Result<Option<&PluginNode>, LoadError> {
     let c = node.children_of(tag);
     if c.len() > 1 {
         return Err(LoadError::at(c[1].pos(), format!("{} has more than one <{}>", node.desc(), tag.name())));

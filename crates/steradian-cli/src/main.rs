@@ -39,7 +39,8 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            // `e` displays as `error: ...` or, for scene errors, `file:line:col: error: ...`.
+            eprintln!("{e}");
             ExitCode::FAILURE
         }
     }

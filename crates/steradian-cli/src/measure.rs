@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use steradian::integrator::{render, RenderOptions};
 
-use crate::render::parse_defines;
+use crate::render::{parse_defines, CliError};
 
 #[derive(Args)]
 pub struct MeasureArgs {
@@ -28,9 +28,9 @@ pub struct MeasureArgs {
     json: bool,
 }
 
-pub fn run(args: MeasureArgs) -> Result<(), String> {
+pub fn run(args: MeasureArgs) -> Result<(), CliError> {
     let defines = parse_defines(&args.defines)?;
-    let scene = steradian_mitsuba::load_file(&args.scene, &defines).map_err(|e| e.to_string())?;
+    let scene = steradian_mitsuba::load_file(&args.scene, &defines)?;
     let sensor = match &args.sensor {
         Some(id) => scene.sensor_index(id).ok_or_else(|| format!("the scene has no sensor with id '{id}'"))?,
         None => 0,

@@ -58,6 +58,43 @@ pub enum Quantity {
     Illuminance,
 }
 
+/// Why a command failed.
+#[derive(Debug)]
+pub enum CliError {
+    /// A scene error: its Display is already a compiler-style `file:line:col: error: ...`
+    /// (or `error: ...` when it has no position).
+    Load(steradian_mitsuba::LoadError),
+    /// Anything else, in plain words.
+    Other(String),
+}
+
+impl std::fmt::Display for CliError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            CliError::Load(e) => write!(f, "{e}"),
+            CliError::Other(m) => write!(f, "error: {m}"),
+        }
+    }
+}
+
+impl From<steradian_mitsuba::LoadError> for CliError {
+    fn from(e: steradian_mitsuba::LoadError) -> Self {
+        CliError::Load(e)
+    }
+}
+
+impl From<String> for CliError {
+    fn from(m: String) -> Self {
+        CliError::Other(m)
+    }
+}
+
+impl From<&str> for CliError {
+    fn from(m: &str) -> Self {
+        CliError::Other(m.to_string())
+    }
+}
+
 pub fn parse_defines(defines: &[String]) -> Result<Vec<(String, String)>, String> {
     defines
         .iter()
@@ -68,23 +105,27 @@ pub fn parse_defines(defines: &[String]) -> Result<Vec<(String, String)>, String
         .collect()
 }
 
-pub fn run(args: RenderArgs) -> Result<(), String> {
+pub fn run(args: RenderArgs) -> Result<(), CliError> {
+    // Check the arguments before the (possibly slow) scene load.
     let defines = parse_defines(&args.defines)?;
-    let (scene, default_output) = match &args.scene {
-        Some(path) => {
-            let scene = steradian_mitsuba::load_file(path, &defines).map_err(|e| e.to_string())?;
-            (scene, path.with_extension("exr"))
-        }
-        None => {
-            let scene = steradian_mitsuba::load_string(BUILTIN_SCENE, Path::new(&format!("<built-in {BUILTIN_NAME}.xml>")), Path::new("."), &defines)
-                .map_err(|e| e.to_string())?;
-            (scene, PathBuf::from(format!("{BUILTIN_NAME}.exr")))
-        }
-    };
-    let output = args.output.unwrap_or(default_output);
-    if output.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase()) != Some("exr".into()) {
-        return Err(format!("output file '{}' must end in .exr", output.display()));
+    if args.spp == Some(0) {
+        return Err("--spp must be at least 1".into());
     }
+    if args.threads == Some(0) {
+        return Err("--threads must be at least 1".into());
+    }
+    let output = match (&args.output, &args.scene) {
+        (Some(o), _) => o.clone(),
+        (None, Some(path)) => path.with_extension("exr"),
+        (None, None) => PathBuf::from(format!("{BUILTIN_NAME}.exr")),
+    };
+    if output.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase()) != Some("exr".into()) {
+        return Err(format!("output file '{}' must end in .exr", output.display()).into());
+    }
+    let scene = match &args.scene {
+        Some(path) => steradian_mitsuba::load_file(path, &defines)?,
+        None => steradian_mitsuba::load_string(BUILTIN_SCENE, Path::new(&format!("<built-in {BUILTIN_NAME}.xml>")), Path::new("."), &defines)?,
+    };
     let sensor = match &args.sensor {
         Some(id) => Some(scene.sensor_index(id).ok_or_else(|| {
             let ids: Vec<&str> = scene.sensors.iter().map(|s| s.id.as_str()).filter(|s| !s.is_empty()).collect();
@@ -92,12 +133,6 @@ pub fn run(args: RenderArgs) -> Result<(), String> {
         })?),
         None => None,
     };
-    if args.spp == Some(0) {
-        return Err("--spp must be at least 1".into());
-    }
-    if args.threads == Some(0) {
-        return Err("--threads must be at least 1".into());
-    }
 
     let cancel = Arc::new(AtomicBool::new(false));
     {

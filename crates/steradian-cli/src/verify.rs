@@ -3,6 +3,8 @@
 use clap::Args;
 use steradian_mitsuba::verify::{case_names, run_case, run_math_cases};
 
+use crate::render::CliError;
+
 #[derive(Args)]
 pub struct VerifyArgs {
     /// Print JSON lines instead of a table.
@@ -12,7 +14,7 @@ pub struct VerifyArgs {
     threads: Option<usize>,
 }
 
-pub fn run(args: VerifyArgs) -> Result<(), String> {
+pub fn run(args: VerifyArgs) -> Result<(), CliError> {
     let mut failures = 0;
     let math = run_math_cases()?;
     if !args.json {
@@ -58,7 +60,7 @@ pub fn run(args: VerifyArgs) -> Result<(), String> {
         println!("{} passed, {} failed", total - failures, failures);
     }
     if failures > 0 {
-        return Err(format!("{failures} verification case(s) failed"));
+        return Err(format!("{failures} verification case(s) failed").into());
     }
     Ok(())
 }

@@ -5,7 +5,7 @@ use steradian::emitter::{AreaLight, ConstantEnvironment, DirectionalLight, Emitt
 use steradian::geometry::Transform;
 use steradian::{Spectrum, Vec3};
 
-use super::{at, unknown_type};
+use super::{at, at_property, unknown_type};
 use crate::error::LoadError;
 use crate::xml::PluginNode;
 
@@ -62,8 +62,19 @@ pub(crate) fn build_standalone(node: &PluginNode) -> Result<Emitter, LoadError> 
             check_non_negative(node, "intensity", intensity)?;
             let cutoff = p.get_float("cutoff_angle")?.unwrap_or(20.0);
             let beam = p.get_float("beam_width")?.unwrap_or(cutoff * 0.75);
+            // Checked here in the user's degrees (the core's check, in radians, would echo
+            // 30° back as 30.000002°).
+            let prop_err = |name: &str, msg: String| LoadError::at(p.position(name).unwrap_or(&node.pos), format!("{}: {msg}", node.desc()));
+            if !(cutoff > 0.0 && cutoff <= 180.0) {
+                return Err(prop_err("cutoff_angle", format!("cutoff_angle must lie in (0°, 180°], got {cutoff}°")));
+            }
+            if !(beam > 0.0 && beam <= cutoff) {
+                let name = if p.contains("beam_width") { "beam_width" } else { "cutoff_angle" };
+                return Err(prop_err(name, format!("beam_width must lie in (0°, cutoff_angle = {cutoff}°], got {beam}°")));
+            }
             let to_world = p.get_transform("to_world")?.unwrap_or_default();
-            Emitter::Spot(SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians()).map_err(at(node))?)
+            Emitter::Spot(SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians())
+                .map_err(at_property(node, &["beam_width", "cutoff_angle"]))?)
         }
         "directional" => {
             let irradiance = p.get_spectrum("irradiance")?.unwrap_or(Spectrum::ONE);

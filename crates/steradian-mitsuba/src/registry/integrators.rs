@@ -3,7 +3,7 @@
 use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
 use steradian::integrator::{parse_max_depth, EmitterVisibility};
 
-use super::{at, unknown_type};
+use super::{at_property, unknown_type};
 use crate::error::LoadError;
 use crate::xml::PluginNode;
 
@@ -28,10 +28,11 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
     let p = &node.props;
     let integrator = match node.plugin_type.as_str() {
         "path" => {
-            let max_depth = parse_max_depth(p.get_int("max_depth")?.unwrap_or(-1)).map_err(at(node))?;
+            let max_depth = parse_max_depth(p.get_int("max_depth")?.unwrap_or(-1)).map_err(at_property(node, &["max_depth"]))?;
             let rr_depth = count(node, "rr_depth", 5)?;
             if rr_depth == 0 {
-                return Err(LoadError::at(p.position("rr_depth").unwrap_or(&node.pos), "rr_depth must be at least 1"));
+                let pos = p.position("rr_depth").unwrap_or(&node.pos);
+                return Err(LoadError::at(pos, format!("{}: 'rr_depth' must be at least 1", node.desc())));
             }
             Integrator::Path(PathTracer { max_depth, rr_depth, emitters: visibility(p.get_bool("hide_emitters")?) })
         }

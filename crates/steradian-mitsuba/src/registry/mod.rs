@@ -99,6 +99,20 @@ pub(crate) fn at(node: &PluginNode) -> impl Fn(String) -> LoadError + '_ {
     move |msg| LoadError::at(&node.pos, format!("{}: {msg}", node.desc()))
 }
 
+/// Like [`at`], but placed at the property the message is about: the one of `names` that
+/// occurs first in the message and is given in `node` (core-library messages name the
+/// parameter, as in "fov must lie ..."); at `node` itself when none is.
+pub(crate) fn at_property<'a>(node: &'a PluginNode, names: &'a [&'a str]) -> impl Fn(String) -> LoadError + 'a {
+    move |msg| {
+        let pos = names
+            .iter()
+            .filter_map(|n| Some((msg.find(n)?, node.props.position(n)?)))
+            .min_by_key(|(i, _)| *i)
+            .map_or(&node.pos, |(_, p)| p);
+        LoadError::at(pos, format!("{}: {msg}", node.desc()))
+    }
+}
+
 /// Builds the renderable scene from a parsed tree.
 pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError> {
     let root: &PluginNode = &tree.root;
@@ -110,6 +124,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError
         base_dir: base_dir.to_path_buf(),
     };
     let mut integrator_pos = None;
+    let mut environment_pos = None;
     for child in &root.children {
         child.mark_used();
         let node = &child.node;
@@ -120,6 +135,14 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError
             }
             ObjectTag::Emitter => {
                 let e = emitters::build_standalone(node)?;
+                if e.is_environment() {
+                    if let Some(first) = environment_pos.replace(node.pos.clone()) {
+                        return Err(LoadError::at(
+                            &node.pos,
+                            format!("{}: only one environment emitter (`constant`) is allowed per scene; the first is at {first}", node.desc()),
+                        ));
+                    }
+                }
                 b.desc.emitters.push(e);
             }
             ObjectTag::Sensor => {

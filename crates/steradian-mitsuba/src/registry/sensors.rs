@@ -6,13 +6,13 @@ use steradian::film::{BoxFilter, ComponentFormat, Film, GaussianFilter, Reconstr
 use steradian::sampling::{Sampler, SamplerKind};
 use steradian::sensor::{FieldOfView, FovAxis, IrradianceMeter, Perspective, RadianceMeter, Sensor, SensorKind, ThinLens};
 
-use super::{at, unknown_type};
+use super::{at, at_property, unknown_type};
 use crate::error::LoadError;
 use crate::xml::{ObjectTag, PluginNode};
 
 const KNOWN: &[&str] = &["perspective", "thinlens", "radiancemeter", "irradiancemeter"];
 
-fn single_child<'a>(node: &'a PluginNode, tag: ObjectTag) -> Result<Option<&'a PluginNode>, LoadError> {
+fn single_child(node: &PluginNode, tag: ObjectTag) -> Result<Option<&PluginNode>, LoadError> {
     let c = node.children_of(tag);
     if c.len() > 1 {
         return Err(LoadError::at(c[1].pos(), format!("{} has more than one <{}>", node.desc(), tag.name())));
@@ -67,7 +67,9 @@ fn build_film(node: &PluginNode) -> Result<Film, LoadError> {
     if p.get_bool("sample_border")? == Some(true) {
         return Err(LoadError::at(p.position("sample_border").unwrap(), "hdrfilm: sample_border = true is not supported yet"));
     }
-    let mut film = Film::new(width, height, filter).map_err(|m| LoadError::at(&node.pos, format!("hdrfilm: {m}")))?;
+    // The core's message already says "hdrfilm: ".
+    let mut film = Film::new(width, height, filter)
+        .map_err(|m| LoadError::at(&node.pos, format!("{}: {}", node.desc(), m.strip_prefix("hdrfilm: ").unwrap_or(&m))))?;
     film.component_format = component_format;
     node.check_all_used()?;
     Ok(film)
@@ -180,16 +182,19 @@ pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, Loa
             FieldOfView::FocalLength { mm: match fl { Some(s) => parse_focal_length(node, &s)?, None => 50.0 } }
         }
     };
-    let x_fov = fov.x_fov(film.width, film.height).map_err(at(node))?;
+    let x_fov = fov.x_fov(film.width, film.height).map_err(at_property(node, &["fov", "focal_length"]))?;
     let aspect = film.width as f32 / film.height as f32;
     let near = p.get_float("near_clip")?.unwrap_or(0.01);
     let far = p.get_float("far_clip")?.unwrap_or(1e4);
     let focus = p.get_float("focus_distance")?.unwrap_or(far);
+    let lens_err = at_property(node, &["to_world", "near_clip", "far_clip", "aperture_radius", "focus_distance"]);
     let kind = match node.plugin_type.as_str() {
-        "perspective" => SensorKind::Perspective(Perspective::new(to_world, x_fov, aspect, near, far).map_err(at(node))?),
+        "perspective" => SensorKind::Perspective(Perspective::new(to_world, x_fov, aspect, near, far).map_err(lens_err)?),
         "thinlens" => {
-            let aperture = p.get_float("aperture_radius")?.ok_or_else(|| LoadError::at(&node.pos, "thinlens: missing 'aperture_radius'"))?;
-            SensorKind::ThinLens(ThinLens::new(to_world, x_fov, aspect, near, far, aperture, focus).map_err(at(node))?)
+            let aperture = p
+                .get_float("aperture_radius")?
+                .ok_or_else(|| LoadError::at(&node.pos, format!("{}: missing 'aperture_radius'", node.desc())))?;
+            SensorKind::ThinLens(ThinLens::new(to_world, x_fov, aspect, near, far, aperture, focus).map_err(lens_err)?)
         }
         _ => unreachable!("checked above"),
     };

@@ -19,6 +19,10 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let flip_normals = p.get_bool("flip_normals")?.unwrap_or(false);
     let shape_err = |e: steradian::shape::ShapeError| LoadError::at(&node.pos, format!("{}: {e}", node.desc()));
+    // Errors reading a mesh file are placed at its `filename`.
+    let mesh_err = |e: steradian::shape::ShapeError| {
+        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {e}", node.desc()))
+    };
 
     let mesh_file = |name: &str| -> Result<std::path::PathBuf, LoadError> {
         let file = p.get_string(name)?.ok_or_else(|| LoadError::at(&node.pos, format!("{}: missing '{name}'", node.desc())))?;
@@ -30,14 +34,14 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
             let path = mesh_file("filename")?;
             let face_normals = p.get_bool("face_normals")?.unwrap_or(false);
             let flip_tex = p.get_bool("flip_tex_coords")?.unwrap_or(true);
-            let data = read_obj(&path, flip_tex).map_err(shape_err)?;
-            Shape::Mesh(Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(shape_err)?)
+            let data = read_obj(&path, flip_tex).map_err(mesh_err)?;
+            Shape::Mesh(Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(mesh_err)?)
         }
         "ply" => {
             let path = mesh_file("filename")?;
             let face_normals = p.get_bool("face_normals")?.unwrap_or(false);
-            let data = read_ply(&path).map_err(shape_err)?;
-            Shape::Mesh(Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(shape_err)?)
+            let data = read_ply(&path).map_err(mesh_err)?;
+            Shape::Mesh(Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(mesh_err)?)
         }
         "rectangle" => Shape::Rectangle(Rectangle::new(&to_world, flip_normals)),
         "disk" => Shape::Disk(Disk::new(&to_world, flip_normals)),

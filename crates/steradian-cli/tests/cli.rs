@@ -1,0 +1,234 @@
+//! The `steradian` binary, run as a user would: outputs, options, bad input, Ctrl-C.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use steradian::film::{read_exr, Image};
+
+const BIN: &str = env!("CARGO_BIN_EXE_steradian");
+
+/// A fresh, empty working directory for one test.
+fn temp_dir(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("steradian-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Runs `steradian args...` in `dir`.
+fn run(dir: &Path, args: &[&str]) -> Output {
+    Command::new(BIN).args(args).current_dir(dir).output().expect("cannot run the steradian binary")
+}
+
+fn text(bytes: &[u8]) -> String {
+    String::from_utf8_lossy(bytes).into_owned()
+}
+
+/// Runs and expects success; returns stdout.
+#[track_caller]
+fn ok(dir: &Path, args: &[&str]) -> String {
+    let out = run(dir, args);
+    let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+    assert!(out.status.success(), "steradian {args:?} failed ({}):\n{stderr}", out.status);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    stdout
+}
+
+/// Runs and expects a failure whose stderr contains every needle; returns stderr.
+#[track_caller]
+fn fails(dir: &Path, args: &[&str], needles: &[&str]) -> String {
+    let out = run(dir, args);
+    let stderr = text(&out.stderr);
+    assert!(!out.status.success(), "steradian {args:?} should fail; stderr:\n{stderr}");
+    assert_eq!(out.status.code(), Some(1), "steradian {args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "steradian {args:?} panicked:\n{stderr}");
+    for needle in needles {
+        assert!(stderr.contains(needle), "stderr of {args:?} does not contain {needle:?}:\n{stderr}");
+    }
+    // Said once, not `error: file:1:2: error: ...`.
+    assert_eq!(stderr.matches("error:").count(), 1, "{stderr}");
+    stderr
+}
+
+#[track_caller]
+fn read(path: &Path) -> Image {
+    read_exr(path).unwrap_or_else(|e| panic!("{e}"))
+}
+
+#[track_caller]
+fn assert_finite_positive(img: &Image) {
+    assert!(img.data.iter().all(|v| v.is_finite()), "non-finite pixels");
+    let mean = img.data.iter().map(|&v| v as f64).sum::<f64>() / img.data.len() as f64;
+    assert!(mean > 0.0, "mean {mean}");
+}
+
+/// A small scene with two sensors of different resolutions, ids `small` and `wide`.
+fn two_sensor_scene(dir: &Path) -> PathBuf {
+    let xml = r#"<scene version="3.0.0">
+    <integrator type="path"><integer name="max_depth" value="3"/></integrator>
+    <sensor type="perspective" id="small">
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="6"/></film>
+    </sensor>
+    <sensor type="perspective" id="wide">
+        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="20"/><integer name="height" value="10"/></film>
+        <sampler type="independent"><integer name="sample_count" value="2"/></sampler>
+    </sensor>
+    <shape type="sphere"/>
+    <emitter type="constant"/>
+</scene>
+"#;
+    let path = dir.join("two.xml");
+    std::fs::write(&path, xml).unwrap();
+    path
+}
+
+#[test]
+fn builtin_scene_without_arguments() {
+    let dir = temp_dir("builtin");
+    let stdout = ok(&dir, &["render", "--spp", "2"]);
+    assert!(stdout.contains("rendered 256x256 at 2 spp"), "{stdout}");
+    assert!(stdout.contains("samples/s"), "{stdout}");
+    assert!(stdout.contains("dropped NaN/Inf samples"), "{stdout}");
+    assert!(dir.join("cornell-box.png").is_file());
+    let img = read(&dir.join("cornell-box.exr"));
+    assert_eq!((img.width, img.height), (256, 256));
+    assert_finite_positive(&img);
+}
+
+#[test]
+fn output_spp_seed_and_defines() {
+    let dir = temp_dir("options");
+    let stdout = ok(&dir, &["render", "-o", "out.exr", "--spp", "3", "--seed", "7", "-D", "res=32", "--quiet"]);
+    assert!(stdout.contains("rendered 32x32 at 3 spp"), "{stdout}");
+    assert!(stdout.contains("out.exr") && stdout.contains("out.png"), "{stdout}");
+    assert!(dir.join("out.png").is_file());
+    assert!(!dir.join("cornell-box.exr").exists());
+    let a = read(&dir.join("out.exr"));
+    assert_eq!((a.width, a.height), (32, 32));
+    assert_finite_positive(&a);
+    // Another seed gives another image; the same seed the same one.
+    ok(&dir, &["render", "-o", "seed8.exr", "--spp", "3", "--seed", "8", "-D", "res=32", "--quiet"]);
+    ok(&dir, &["render", "-o", "again.exr", "--spp", "3", "--seed", "7", "-D", "res=32", "--quiet"]);
+    assert_ne!(read(&dir.join("seed8.exr")).data, a.data);
+    assert_eq!(read(&dir.join("again.exr")).data, a.data);
+}
+
+#[test]
+fn scene_file_output_beside_it_and_sensor_choice() {
+    let dir = temp_dir("sensor");
+    let scene = two_sensor_scene(&dir);
+    // The first sensor by default, written beside the scene.
+    ok(&dir, &["render", scene.to_str().unwrap(), "--quiet"]);
+    let img = read(&dir.join("two.exr"));
+    assert_eq!((img.width, img.height), (8, 6));
+    assert!(dir.join("two.png").is_file());
+    let stdout = ok(&dir, &["render", "two.xml", "--sensor", "wide", "-o", "wide.exr", "--quiet"]);
+    assert!(stdout.contains("rendered 20x10 at 2 spp"), "{stdout}");
+    let img = read(&dir.join("wide.exr"));
+    assert_eq!((img.width, img.height), (20, 10));
+    assert_finite_positive(&img);
+}
+
+#[test]
+fn thread_count_does_not_change_the_image() {
+    let dir = temp_dir("threads");
+    let common = ["render", "--spp", "5", "--seed", "11", "-D", "res=48", "--quiet"];
+    ok(&dir, &[&common[..], &["--threads", "1", "-o", "one.exr"]].concat());
+    ok(&dir, &[&common[..], &["--threads", "2", "-o", "two.exr"]].concat());
+    let (a, b) = (read(&dir.join("one.exr")), read(&dir.join("two.exr")));
+    assert_eq!((a.width, a.height), (b.width, b.height));
+    let bits = |i: &Image| i.data.iter().map(|v| v.to_bits()).collect::<Vec<u32>>();
+    assert!(bits(&a) == bits(&b), "--threads 1 and --threads 2 give different images");
+}
+
+#[test]
+fn bad_input_is_an_error_not_a_panic() {
+    let dir = temp_dir("bad");
+    // Missing scene file.
+    fails(&dir, &["render", "nothere.xml"], &["error: ", "cannot read scene file", "nothere.xml"]);
+    // Malformed XML: the root is never closed.
+    std::fs::write(dir.join("malformed.xml"), "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>\n").unwrap();
+    let e = fails(&dir, &["render", "malformed.xml"], &["malformed.xml:3:", "malformed XML"]);
+    assert!(e.starts_with("malformed.xml:3:"), "{e}");
+    // Unknown plugin.
+    std::fs::write(dir.join("unknown.xml"), "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n  <shape type=\"spheer\"/>\n</scene>\n").unwrap();
+    let e = fails(&dir, &["render", "unknown.xml"], &["unknown.xml:3:3: error: unknown shape plugin type 'spheer'"]);
+    assert!(e.starts_with("unknown.xml:3:3: error: "), "{e}");
+    // A missing mesh: at the filename, naming the mesh.
+    std::fs::write(
+        dir.join("mesh.xml"),
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<shape type=\"obj\">\n  <string name=\"filename\" value=\"gone.obj\"/>\n</shape>\n</scene>\n",
+    )
+    .unwrap();
+    fails(&dir, &["render", "mesh.xml"], &["mesh.xml:4:3: error: ", "cannot open OBJ file", "gone.obj"]);
+    // Command-line mistakes.
+    fails(&dir, &["render", "-D", "res"], &["error: -D expects NAME=VALUE, got 'res'"]);
+    fails(&dir, &["render", "-D", "resolution=32"], &["unused parameter 'resolution'"]);
+    fails(&dir, &["render", "-o", "out.txt"], &["error: output file 'out.txt' must end in .exr"]);
+    fails(&dir, &["render", "--spp", "0"], &["error: --spp must be at least 1"]);
+    fails(&dir, &["render", "--threads", "0"], &["error: --threads must be at least 1"]);
+    fails(&dir, &["render", "--sensor", "nope", "--spp", "1"], &["error: the scene has no sensor with id 'nope' (sensor ids: none)"]);
+    let scene = two_sensor_scene(&dir);
+    fails(&dir, &["render", scene.to_str().unwrap(), "--sensor", "big"], &["no sensor with id 'big' (sensor ids: small, wide)"]);
+    // Nothing was written by the failed runs.
+    let written: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".exr") || n.ends_with(".png"))
+        .collect();
+    assert!(written.is_empty(), "{written:?}");
+}
+
+#[test]
+fn argument_parse_errors_are_usage_errors() {
+    // clap's own errors (exit status 2), not panics.
+    let dir = temp_dir("usage");
+    for args in [&["render", "--spp", "many"][..], &["render", "--bogus"], &["frobnicate"]] {
+        let out = run(&dir, args);
+        let stderr = text(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+        assert!(stderr.contains("error:") && !stderr.contains("panicked"), "{stderr}");
+    }
+}
+
+/// Ctrl-C stops the render after the passes already finished, writes the image from them,
+/// says how many samples per pixel it holds, and exits with status 0.
+#[cfg(unix)]
+#[test]
+fn ctrl_c_keeps_the_finished_passes() {
+    use std::time::{Duration, Instant};
+
+    let dir = temp_dir("ctrl-c");
+    // 64x64 px (4 tiles) at 5000 spp: each of the 16 passes is short (the render stops at
+    // the end of the tiles already started), the whole render long.
+    let child = Command::new(BIN)
+        .args(["render", "--spp", "5000", "-D", "res=64", "-o", "stopped.exr"])
+        .current_dir(&dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(Duration::from_millis(1500));
+    let status = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
+    assert!(status.success());
+    let start = Instant::now();
+    let out = child.wait_with_output().unwrap();
+    let (stdout, stderr) = (text(&out.stdout), text(&out.stderr));
+    assert!(start.elapsed() < Duration::from_secs(120), "took {:?} to stop", start.elapsed());
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert!(stderr.contains("interrupted: the image holds "), "{stderr}");
+    let spp: u32 = stderr
+        .split("interrupted: the image holds ")
+        .nth(1)
+        .and_then(|r| r.split(" of 5000 samples per pixel").next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no sample count in: {stderr}"));
+    assert!(spp > 0 && spp < 5000, "{spp} spp");
+    assert!(stdout.contains(&format!("rendered 64x64 at {spp} spp")), "{stdout}");
+    assert!(stdout.contains("wrote stopped.exr and stopped.png"), "{stdout}");
+    let img = read(&dir.join("stopped.exr"));
+    assert_eq!((img.width, img.height), (64, 64));
+    assert_finite_positive(&img);
+}

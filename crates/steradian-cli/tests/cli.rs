@@ -168,7 +168,7 @@ fn bad_input_is_an_error_not_a_panic() {
     fails(&dir, &["render", "-o", "out.txt"], &["error: output file 'out.txt' must end in .exr"]);
     fails(&dir, &["render", "--spp", "0"], &["error: --spp must be at least 1"]);
     fails(&dir, &["render", "--threads", "0"], &["error: --threads must be at least 1"]);
-    fails(&dir, &["render", "--sensor", "nope", "--spp", "1"], &["error: the scene has no sensor with id 'nope' (sensor ids: none)"]);
+    fails(&dir, &["render", "--sensor", "nope", "--spp", "1"], &["error: the scene has no sensor with id 'nope' (sensor ids: top-down)"]);
     let scene = two_sensor_scene(&dir);
     fails(&dir, &["render", scene.to_str().unwrap(), "--sensor", "big"], &["no sensor with id 'big' (sensor ids: small, wide)"]);
     // Nothing was written by the failed runs.

@@ -24,9 +24,9 @@ use crate::Spectrum;
 
 /// Side of a square render tile, pixels.
 const TILE: u32 = 32;
-/// At most this many passes per render (more passes: finer progress and interruption, more
-/// merging).
-const MAX_PASSES: u32 = 16;
+/// Passes grow from 1 sample per pixel by doubling up to this fraction of the total, so that
+/// an early Ctrl-C still finds a finished pass and later passes merge rarely.
+const PASS_FRACTION: u32 = 8;
 /// Work items per pass to aim for when the film has few tiles.
 const WORK_ITEMS_PER_PASS: u32 = 64;
 
@@ -141,7 +141,15 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
         })
         .collect();
 
-    let passes = spp.clamp(1, MAX_PASSES);
+    // pass boundaries: 1, 2, 4, … samples per pixel, at most ⌈spp/8⌉ per pass; they depend on
+    // spp only, so images are reproducible
+    let mut bounds = vec![0u32];
+    let mut size = 1u32;
+    while *bounds.last().unwrap() < spp {
+        let next = (bounds.last().unwrap() + size).min(spp);
+        bounds.push(next);
+        size = (size * 2).min(spp.div_ceil(PASS_FRACTION).max(1));
+    }
     let start = Instant::now();
     let samples_total = width as u64 * height as u64 * spp as u64;
     let samples_done = AtomicU64::new(0);
@@ -155,13 +163,9 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
 
     let mut spp_done = 0u32;
     let mut interrupted = false;
-    for pass in 0..passes {
+    for pass in bounds.windows(2) {
         // samples [first, last) of every pixel
-        let first = (spp as u64 * pass as u64 / passes as u64) as u32;
-        let last = (spp as u64 * (pass as u64 + 1) / passes as u64) as u32;
-        if last == first {
-            continue;
-        }
+        let (first, last) = (pass[0], pass[1]);
         // Work items: tiles, each split into sample ranges when the film has few tiles (a 1×1
         // meter film would otherwise keep one core busy). The split depends on the film and
         // the pass only, never on the thread count, so images are reproducible.
@@ -188,6 +192,9 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
                     let mut block = film.create_block(offset, size);
                     let mut bad = 0u64;
                     for y in offset.y..offset.y + size.y {
+                        if cancelled() {
+                            return None;
+                        }
                         for x in offset.x..offset.x + size.x {
                             let pixel = UVec2::new(x, y);
                             for index in s0..s1 {

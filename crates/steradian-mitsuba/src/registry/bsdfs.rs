@@ -45,7 +45,7 @@ fn ior(node: &PluginNode, name: &str, default: &str) -> Result<f32, LoadError> {
         )),
     };
     let v = value.map_err(|m| LoadError::at(&pos, format!("{}: {m}", node.desc())))?;
-    if !(v > 0.0) || !v.is_finite() {
+    if v.is_nan() || v <= 0.0 || v.is_infinite() {
         return Err(LoadError::at(
             &pos,
             format!("{}: {name} must be positive, got {v}", node.desc()),

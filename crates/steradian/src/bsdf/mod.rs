@@ -129,6 +129,12 @@ impl Bsdf {
     }
 }
 
+/// True for x > 0; false for zero, negatives and NaN.
+#[inline]
+pub(crate) fn positive(x: f32) -> bool {
+    x > 0.0
+}
+
 /// cos θ of a local direction.
 #[inline]
 pub(crate) fn cos_theta(w: Vec3) -> f32 {

@@ -22,7 +22,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel::{fresnel_conductor, reflect_about};
 use super::microfacet::MicrofacetDistribution;
-use super::{BsdfSample, Lobe, ShadingPoint};
+use super::{positive, BsdfSample, Lobe, ShadingPoint};
 use crate::texture::Texture;
 use crate::Spectrum;
 
@@ -79,7 +79,7 @@ impl RoughConductor {
         let distr = &self.distribution;
         let (m, pdf_m) = distr.sample(wo, u2);
         let wi = reflect_about(wo, m);
-        if !(pdf_m > 0.0) || wi.z <= 0.0 {
+        if !positive(pdf_m) || wi.z <= 0.0 {
             return None;
         }
         let w = if distr.sample_visible {
@@ -87,7 +87,7 @@ impl RoughConductor {
         } else {
             distr.g(wo, wi, m) * wo.dot(m) / (wo.z * m.z)
         };
-        if !(w > 0.0) {
+        if !positive(w) {
             return None;
         }
         let pdf = pdf_m / (4.0 * wi.dot(m));

@@ -26,7 +26,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel::{fresnel_dielectric, reflect_about, refract_about};
 use super::microfacet::MicrofacetDistribution;
-use super::{BsdfSample, Lobe, ShadingPoint};
+use super::{positive, BsdfSample, Lobe, ShadingPoint};
 use crate::texture::Texture;
 use crate::Spectrum;
 
@@ -69,7 +69,7 @@ impl RoughDielectric {
         let eta = if wo.z > 0.0 { self.eta } else { 1.0 / self.eta };
         let h = wo + wi * if reflect { 1.0 } else { eta };
         let len = h.length();
-        if !(len > 0.0) {
+        if !positive(len) {
             return None;
         }
         let h = h / len;
@@ -85,7 +85,7 @@ impl RoughDielectric {
         let distr = &self.distribution;
         let d = distr.d(m);
         let g = distr.g(wo, wi, m);
-        if !(d * g > 0.0) {
+        if !positive(d * g) {
             return Spectrum::ZERO;
         }
         let f = fresnel_dielectric(wo.dot(m), self.eta).r;
@@ -123,7 +123,7 @@ impl RoughDielectric {
         }
         let sdistr = self.sampling_distribution(wo.z);
         let (m, pdf_m) = sdistr.sample(wo * sign(wo.z), u2);
-        if !(pdf_m > 0.0) {
+        if !positive(pdf_m) {
             return None;
         }
         let om = wo.dot(m);
@@ -152,7 +152,7 @@ impl RoughDielectric {
             // exactly ρ·|cos θi|/pdf (Mitsuba 3 omits this ratio).
             distr.g(wo, wi, m) * om / (wo.z * m.z) * distr.d(m) / sdistr.d(m)
         };
-        if !(g > 0.0) || !(pdf > 0.0) {
+        if !positive(g) || !positive(pdf) {
             return None;
         }
         weight *= g;

@@ -6,10 +6,24 @@
 //! return 0 unless both directions lie above the surface; `twosided` makes both faces
 //! reflect.
 
+mod conductor;
+mod dielectric;
 mod diffuse;
+pub mod fresnel;
+pub mod ior;
+pub mod microfacet;
+mod roughconductor;
+mod roughdielectric;
+mod thindielectric;
 mod twosided;
 
+pub use conductor::Conductor;
+pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use microfacet::{MicrofacetDistribution, MicrofacetKind};
+pub use roughconductor::RoughConductor;
+pub use roughdielectric::RoughDielectric;
+pub use thindielectric::ThinDielectric;
 pub use twosided::TwoSided;
 
 use glam::{Vec2, Vec3};
@@ -35,7 +49,10 @@ pub struct BsdfSample {
     /// The Monte Carlo weight ρ(wo, wi)·|cos θi| / pdf (dimensionless).
     pub weight: Spectrum,
     pub lobe: Lobe,
-    /// Relative index of refraction along the sampled path (1 for reflection).
+    /// Relative index of refraction η_t/η_i of the interface crossed by the sampled
+    /// direction (1 for reflection and for straight pass-through), as Mitsuba's
+    /// `BSDFSample::eta`. Transmission weights include the radiance factor (η_i/η_t)², so
+    /// Russian roulette uses throughput·η² with η the product of these values along the path.
     pub eta: f32,
 }
 
@@ -50,41 +67,53 @@ pub struct ShadingPoint {
 pub enum Bsdf {
     Diffuse(Diffuse),
     TwoSided(TwoSided),
+    Conductor(Conductor),
+    RoughConductor(RoughConductor),
+    Dielectric(Dielectric),
+    ThinDielectric(ThinDielectric),
+    RoughDielectric(RoughDielectric),
+}
+
+/// Dispatches a method call to the variant's implementation.
+macro_rules! dispatch {
+    ($self:expr, $b:ident => $e:expr) => {
+        match $self {
+            Bsdf::Diffuse($b) => $e,
+            Bsdf::TwoSided($b) => $e,
+            Bsdf::Conductor($b) => $e,
+            Bsdf::RoughConductor($b) => $e,
+            Bsdf::Dielectric($b) => $e,
+            Bsdf::ThinDielectric($b) => $e,
+            Bsdf::RoughDielectric($b) => $e,
+        }
+    };
 }
 
 impl Bsdf {
     /// ρ(wo, wi) in 1/sr, without the cosine.
     #[inline]
     pub fn eval(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> Spectrum {
-        match self {
-            Bsdf::Diffuse(b) => b.eval(sp, wo, wi),
-            Bsdf::TwoSided(b) => b.eval(sp, wo, wi),
-        }
+        dispatch!(self, b => b.eval(sp, wo, wi))
     }
 
     /// Density (1/sr) with which `sample` proposes `wi` given `wo`.
     #[inline]
     pub fn pdf(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
-        match self {
-            Bsdf::Diffuse(b) => b.pdf(sp, wo, wi),
-            Bsdf::TwoSided(b) => b.pdf(sp, wo, wi),
-        }
+        dispatch!(self, b => b.pdf(sp, wo, wi))
     }
 
     /// Draws `wi` given `wo` with uniforms `u1` (lobe choice) and `u2` (direction).
     #[inline]
     pub fn sample(&self, sp: &ShadingPoint, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
-        match self {
-            Bsdf::Diffuse(b) => b.sample(sp, wo, u1, u2),
-            Bsdf::TwoSided(b) => b.sample(sp, wo, u1, u2),
-        }
+        dispatch!(self, b => b.sample(sp, wo, u1, u2))
     }
 
     /// True when some lobe has a finite density, so that light sampling can help.
     #[inline]
     pub fn has_smooth_lobe(&self) -> bool {
         match self {
-            Bsdf::Diffuse(_) => true,
+            Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::RoughDielectric(_) => true,
+            Bsdf::Conductor(_) | Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided(b) => b.has_smooth_lobe(),
         }
     }
@@ -98,6 +127,12 @@ impl Bsdf {
     pub fn black() -> Bsdf {
         Bsdf::Diffuse(Diffuse::new(Spectrum::ZERO.into()))
     }
+}
+
+/// True for x > 0; false for zero, negatives and NaN.
+#[inline]
+pub(crate) fn positive(x: f32) -> bool {
+    x > 0.0
 }
 
 /// cos θ of a local direction.
@@ -132,6 +167,12 @@ pub(crate) mod testing {
     /// cells with small expected counts pooled (pbrt-v4 / Mitsuba 3 style). Returns the
     /// p-value.
     pub fn chi2_pvalue(bsdf: &Bsdf, wo: Vec3, n: usize, seed: u64) -> f64 {
+        chi2_pvalue_sub(bsdf, wo, n, seed, 8)
+    }
+
+    /// [`chi2_pvalue`] with `sub`² pdf evaluations per cell for the expected counts: sharp
+    /// lobes (α ≲ 0.1) need a finer quadrature than the default 8² to be integrated exactly.
+    pub fn chi2_pvalue_sub(bsdf: &Bsdf, wo: Vec3, n: usize, seed: u64, sub: usize) -> f64 {
         const NT: usize = 20;
         const NP: usize = 40;
         let mut observed = vec![0f64; NT * NP];
@@ -159,20 +200,20 @@ pub(crate) mod testing {
         }
         assert_eq!(delta, 0, "chi2 test covers smooth lobes only");
         // expected counts: integrate the pdf over each cell (midpoint rule on a fine grid)
-        const SUB: usize = 8;
+        let sub_n = sub;
         let mut expected = vec![0f64; NT * NP];
         for it in 0..NT {
             for ip in 0..NP {
                 let mut acc = 0.0;
-                for a in 0..SUB {
-                    for b in 0..SUB {
-                        let t0 = (it as f64 + (a as f64 + 0.5) / SUB as f64) * PI / NT as f64;
-                        let p0 = (ip as f64 + (b as f64 + 0.5) / SUB as f64) * 2.0 * PI / NP as f64;
+                for a in 0..sub_n {
+                    for b in 0..sub_n {
+                        let t0 = (it as f64 + (a as f64 + 0.5) / sub_n as f64) * PI / NT as f64;
+                        let p0 = (ip as f64 + (b as f64 + 0.5) / sub_n as f64) * 2.0 * PI / NP as f64;
                         let w = Vec3::new((t0.sin() * p0.cos()) as f32, (t0.sin() * p0.sin()) as f32, t0.cos() as f32);
                         acc += bsdf.pdf(&sp, wo, w) as f64 * t0.sin();
                     }
                 }
-                let cell = (PI / NT as f64) * (2.0 * PI / NP as f64) / (SUB * SUB) as f64;
+                let cell = (PI / NT as f64) * (2.0 * PI / NP as f64) / (sub_n * sub_n) as f64;
                 expected[it * NP + ip] = acc * cell * n as f64;
             }
         }

@@ -1,0 +1,354 @@
+#!/usr/bin/env python3
+"""Benchmark steradian against Mitsuba 3 on the reference scenes, in one run.
+
+    python3 benches/render_vs_mitsuba.py [--scenes cornell,furnace,pointlight] [--spp 64]
+        [--variant llvm_ad_rgb[,scalar_rgb]] [--repeat 3] [--threads N] [--json FILE|-]
+
+For every scene, in one process and alternating (steradian, then each Mitsuba variant, then
+steradian again, ...) so that all see the same machine:
+
+  steradian  `steradian render SCENE --spp N --seed S -o OUT.exr --quiet`, timed as a whole
+             process (wall clock of the subprocess: start-up, XML load, BVH build, render,
+             EXR + PNG writing). The render time steradian prints itself is reported too.
+  Mitsuba 3  the pip package, in this Python process. The scene is loaded and rendered once
+             untimed (JIT compile for llvm_* variants), then each timed render is a *warm*
+             `mi.render(scene, spp=N, seed=S)` until the image is on the host (no load, no
+             write).
+
+The reported time of each renderer is the median of --repeat timings. Each image is compared
+with the scene's reference (`<scene>-ref.exr`, thousands of spp rendered by Mitsuba 3):
+
+  relMSE = mean((a - b)^2 / (b^2 + 1e-2))  over pixels and RGB, b = reference
+  ratio  = mean(a) / mean(b) per channel (1.0 = no bias)
+  t@1e-3 = time * relMSE / 1e-3: the time needed to reach relMSE 1e-3, assuming relMSE is
+           proportional to 1/spp (unbiased Monte Carlo). The reference's own noise is NOT
+           subtracted (see benches/README.md).
+  speed-up = Mitsuba t@1e-3 / steradian t@1e-3  (> 1: steradian reaches the target sooner)
+
+and the geometric mean of the speed-ups over the scenes. Scenes steradian cannot load yet
+(e.g. an unknown BSDF plugin) are skipped with the reason.
+
+The repository is self-contained: scenes and references are read from
+crates/steradian-mitsuba/tests/reference/.
+"""
+import argparse
+import json
+import math
+import os
+import re
+import resource
+import shutil
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+REF_DIR = os.path.join(REPO, "crates", "steradian-mitsuba", "tests", "reference")
+TARGET = 1e-3
+EPS = 1e-2
+
+
+# ----------------------------------------------------------------------------- Mitsuba set-up
+
+def pick_libllvm():
+    """Point Dr.Jit at the newest libLLVM >= 17 that `ldconfig -p` lists, unless
+    DRJIT_LIBLLVM_PATH is already set. drjit 1.5 (mitsuba 3.9) crashes with LLVM 15/16
+    ("Cannot select ... fminimum") and rejects LLVM 14. Must run before drjit is imported."""
+    if os.environ.get("DRJIT_LIBLLVM_PATH"):
+        return os.environ["DRJIT_LIBLLVM_PATH"]
+    try:
+        txt = subprocess.run(["ldconfig", "-p"], capture_output=True, text=True, check=False).stdout
+    except OSError:
+        return None
+    best = None
+    for line in txt.splitlines():
+        m = re.match(r"\s*(libLLVM[-.]?(?:so\.)?(\d+)[^ ]*)\s.*=>\s*(\S+)", line)
+        if m and int(m.group(2)) >= 17:
+            cand = (int(m.group(2)), m.group(3))
+            best = max(best, cand) if best else cand
+    if best:
+        os.environ["DRJIT_LIBLLVM_PATH"] = best[1]
+        return best[1]
+    return None
+
+
+def import_mitsuba(variants, threads):
+    if any(v.startswith("llvm") for v in variants):
+        if pick_libllvm() is None:
+            sys.exit("no libLLVM >= 17 found (ldconfig -p); install it: apt-get install -y libllvm19 "
+                     "(see benches/README.md), or run with --variant scalar_rgb")
+    try:
+        import drjit as dr
+        import mitsuba as mi
+    except ImportError as e:
+        sys.exit(f"cannot import mitsuba ({e}); install it: pip install mitsuba==3.9.1 numpy")
+    for v in variants:
+        if v not in mi.variants():
+            sys.exit(f"Mitsuba variant '{v}' is not available (have: {', '.join(mi.variants())})")
+    if threads:
+        dr.set_thread_count(threads)
+    return mi, dr
+
+
+# ----------------------------------------------------------------------------- images
+
+def load_exr(mi, dr, np, path):
+    # Mitsuba 3.9.1 / drjit 1.5 deadlock in Bitmap's (OpenEXR) read when the thread count is 1
+    # (readPixels waits on a pool with no worker), so read with at least 2 threads.
+    tc = dr.thread_count()
+    if tc < 2:
+        dr.set_thread_count(2)
+    try:
+        arr = np.array(mi.Bitmap(path), dtype=np.float64)
+    finally:
+        if tc < 2:
+            dr.set_thread_count(tc)
+    if arr.ndim == 2:
+        arr = arr[..., None]
+    return arr[..., :3]
+
+
+def metrics(np, a, b):
+    if a.shape != b.shape:
+        raise ValueError(f"image shape {a.shape} differs from the reference's {b.shape}")
+    d2 = (a - b) ** 2
+    rel = float(np.mean(d2 / (b * b + EPS)))
+    ma = a.reshape(-1, a.shape[-1]).mean(0)
+    mb = np.maximum(b.reshape(-1, b.shape[-1]).mean(0), 1e-30)
+    return rel, [float(x) for x in ma / mb]
+
+
+# ----------------------------------------------------------------------------- steradian
+
+def build_steradian():
+    """cargo build --release -p steradian-cli; returns the path of the binary."""
+    cmd = ["cargo", "build", "--release", "-p", "steradian-cli", "--message-format=json-render-diagnostics"]
+    print("building: " + " ".join(cmd[:5]), file=sys.stderr, flush=True)
+    p = subprocess.run(cmd, cwd=REPO, stdout=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        sys.exit("cargo build failed")
+    exe = None
+    for line in p.stdout.splitlines():
+        try:
+            msg = json.loads(line)
+        except ValueError:
+            continue
+        if msg.get("reason") == "compiler-artifact" and msg.get("executable") and \
+                msg.get("target", {}).get("name") == "steradian":
+            exe = msg["executable"]
+    if not exe or not os.path.exists(exe):
+        sys.exit("cargo build did not report the steradian executable")
+    return exe
+
+
+RENDERED = re.compile(r"rendered (\d+)x(\d+) at (\d+) spp in ([0-9.]+) s")
+
+
+def run_steradian(exe, scene, spp, seed, threads, out):
+    cmd = [exe, "render", scene, "--spp", str(spp), "--seed", str(seed), "-o", out, "--quiet"]
+    if threads:
+        cmd += ["--threads", str(threads)]
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    t0 = time.perf_counter()
+    p = subprocess.run(cmd, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    cpu = (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+    if p.returncode != 0:
+        return dict(error=(p.stderr.strip() or p.stdout.strip() or f"exit status {p.returncode}"))
+    m = RENDERED.search(p.stdout)
+    res = dict(wall=wall, cpu=cpu)
+    if m:
+        res["res"] = [int(m.group(1)), int(m.group(2))]
+        res["render_s"] = float(m.group(4))
+        if int(m.group(3)) != spp:
+            res["error"] = f"steradian rendered {m.group(3)} spp instead of {spp}"
+    return res
+
+
+# ----------------------------------------------------------------------------- Mitsuba
+
+class MitsubaScene:
+    """One scene loaded in one variant, compiled by an untimed first render."""
+
+    def __init__(self, mi, np, variant, path, spp, seed):
+        self.mi, self.np, self.variant, self.spp, self.seed = mi, np, variant, spp, seed
+        mi.set_variant(variant)
+        t0 = time.perf_counter()
+        self.scene = mi.load_file(path)
+        self.load_s = time.perf_counter() - t0
+        t0 = time.perf_counter()
+        self.image = self._render()
+        self.cold_s = time.perf_counter() - t0  # includes the JIT compile (or a kernel-cache hit)
+
+    def _render(self):
+        img = self.mi.render(self.scene, spp=self.spp, seed=self.seed)
+        return self.np.array(img, dtype=self.np.float64)  # forces evaluation and the copy to host
+
+    def timed(self):
+        self.mi.set_variant(self.variant)
+        t0 = time.perf_counter()
+        c0 = time.process_time()
+        self.image = self._render()
+        return time.perf_counter() - t0, time.process_time() - c0
+
+
+# ----------------------------------------------------------------------------- benchmark
+
+def scene_paths(name):
+    if name.endswith(".xml"):
+        xml = os.path.abspath(name)
+        ref = xml[:-4] + "-ref.exr"
+    else:
+        xml = os.path.join(REF_DIR, name + ".xml")
+        ref = os.path.join(REF_DIR, name + "-ref.exr")
+    return os.path.splitext(os.path.basename(xml))[0], xml, ref
+
+
+def fmt_t(x):
+    return "-" if x is None else (f"{x:.3f}" if x < 10 else f"{x:.1f}")
+
+
+def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, log=sys.stderr):
+    """Runs the benchmark; returns a JSON-able dict (and prints progress to `log`)."""
+    import numpy as np
+    mi, dr = import_mitsuba(variants, threads)
+    exe = build_steradian() if build else os.path.join(REPO, "target", "release", "steradian")
+    workdir = keep or tempfile.mkdtemp(prefix="steradian_bench_")
+    os.makedirs(workdir, exist_ok=True)
+    result = dict(spp=spp, seed=seed, repeat=repeat, threads=threads or os.cpu_count(),
+                  variants=variants, target_relmse=TARGET, cpu_count=os.cpu_count(),
+                  loadavg_start=[round(x, 2) for x in os.getloadavg()], scenes=[], skipped=[],
+                  libllvm=os.environ.get("DRJIT_LIBLLVM_PATH"), mitsuba_version=mi.__version__,
+                  steradian=exe)
+    try:
+        for name in scenes:
+            sname, xml, ref = scene_paths(name)
+            if not os.path.exists(xml) or not os.path.exists(ref):
+                result["skipped"].append(dict(scene=sname, reason=f"no scene or reference ({xml}, {ref})"))
+                print(f"[{sname}] SKIPPED: missing {xml} or {ref}", file=log, flush=True)
+                continue
+            # Probe: 1 spp, untimed; checks steradian can load the scene and warms the page cache.
+            probe = run_steradian(exe, xml, 1, seed, threads, os.path.join(workdir, f"{sname}-probe.exr"))
+            if "error" in probe:
+                err = re.sub(r"^error: ", "", probe["error"].splitlines()[-1])
+                why = "steradian cannot load it yet" if "unknown" in err and "plugin" in err \
+                    else "steradian fails on it"
+                result["skipped"].append(dict(scene=sname, reason=f"{why}: {err}"))
+                print(f"[{sname}] SKIPPED ({why}): {err}", file=log, flush=True)
+                continue
+            print(f"[{sname}] loading + compiling in Mitsuba ({', '.join(variants)}) ...", file=log, flush=True)
+            peers = {v: MitsubaScene(mi, np, v, xml, spp, seed) for v in variants}
+            st_out = os.path.join(workdir, f"{sname}-steradian.exr")
+            st_runs, mi_runs = [], {v: [] for v in variants}
+            for i in range(repeat):
+                r = run_steradian(exe, xml, spp, seed, threads, st_out)
+                if "error" in r:
+                    raise RuntimeError(f"[{sname}] steradian: {r['error']}")
+                st_runs.append(r)
+                line = f"[{sname}] run {i + 1}/{repeat}: steradian {r['wall']:.3f} s"
+                for v in variants:
+                    mi_runs[v].append(peers[v].timed())
+                    line += f", {v} {mi_runs[v][-1][0]:.3f} s"
+                print(line, file=log, flush=True)
+            refimg = load_exr(mi, dr, np, ref)
+            st_rel, st_ratio = metrics(np, load_exr(mi, dr, np, st_out), refimg)
+            st_wall = statistics.median(r["wall"] for r in st_runs)
+            st = dict(time_s=st_wall, cpu_s=statistics.median(r["cpu"] for r in st_runs),
+                      render_s=statistics.median(r.get("render_s", float("nan")) for r in st_runs),
+                      times=[round(r["wall"], 4) for r in st_runs],
+                      relmse=st_rel, mean_ratio=st_ratio, t_target_s=st_wall * st_rel / TARGET)
+            entry = dict(scene=sname, spp=spp, res=st_runs[0].get("res"), steradian=st, mitsuba={})
+            for v in variants:
+                img = peers[v].image
+                if keep:
+                    mi.Bitmap(img.astype(np.float32), pixel_format=mi.Bitmap.PixelFormat.RGB).write(
+                        os.path.join(workdir, f"{sname}-{v}.exr"))
+                rel, ratio = metrics(np, img, refimg)
+                t = statistics.median(x[0] for x in mi_runs[v])
+                tt = t * rel / TARGET
+                entry["mitsuba"][v] = dict(
+                    time_s=t, cpu_s=statistics.median(x[1] for x in mi_runs[v]),
+                    times=[round(x[0], 4) for x in mi_runs[v]],
+                    load_s=peers[v].load_s, first_render_s=peers[v].cold_s,
+                    relmse=rel, mean_ratio=ratio, t_target_s=tt,
+                    time_ratio=t / st_wall,
+                    speedup=tt / st["t_target_s"] if st["t_target_s"] > 0 else None)
+            result["scenes"].append(entry)
+            del peers
+    finally:
+        if not keep:
+            shutil.rmtree(workdir, ignore_errors=True)
+    result["loadavg_end"] = [round(x, 2) for x in os.getloadavg()]
+    result["geomean_speedup"] = {}
+    for v in variants:
+        sp = [e["mitsuba"][v]["speedup"] for e in result["scenes"] if e["mitsuba"][v]["speedup"]]
+        result["geomean_speedup"][v] = math.exp(sum(map(math.log, sp)) / len(sp)) if sp else None
+    return result
+
+
+def report(res, out=sys.stdout):
+    p = lambda s="": print(s, file=out)
+    p(f"steradian vs Mitsuba {res['mitsuba_version']} ({', '.join(res['variants'])}), "
+      f"{res['spp']} spp, seed {res['seed']}, median of {res['repeat']}, "
+      f"{res['threads']} threads on {res['cpu_count']} cores")
+    p(f"load average at start {res['loadavg_start']}, at end {res['loadavg_end']}")
+    p("steradian time = whole process (load + render + write); Mitsuba time = warm mi.render() only")
+    p(f"t@1e-3 = time x relMSE / 1e-3 (relMSE ~ 1/spp); speed-up = Mitsuba t@1e-3 / steradian t@1e-3")
+    p("own s = the render time steradian prints itself (no start-up, load or writing)")
+    p()
+    hdr = f"{'scene':<11} {'renderer':<12} {'spp':>4} {'time s':>7} {'own s':>6} {'cpu s':>7} {'relMSE':>9} " \
+          f"{'mean ratio R,G,B':<22} {'t@1e-3 s':>8} {'speed-up':>8}"
+    p(hdr)
+    p("-" * len(hdr))
+    for e in res["scenes"]:
+        s = e["steradian"]
+        p(f"{e['scene']:<11} {'steradian':<12} {e['spp']:>4} {fmt_t(s['time_s']):>7} {fmt_t(s['render_s']):>6} {fmt_t(s['cpu_s']):>7} "
+          f"{s['relmse']:>9.3e} {','.join(f'{x:.4f}' for x in s['mean_ratio']):<22} "
+          f"{fmt_t(s['t_target_s']):>8} {'':>8}")
+        for v, m in e["mitsuba"].items():
+            sp = "-" if m["speedup"] is None else f"{m['speedup']:.2f}x"
+            p(f"{'':<11} {v:<12} {e['spp']:>4} {fmt_t(m['time_s']):>7} {'':>6} {fmt_t(m['cpu_s']):>7} "
+              f"{m['relmse']:>9.3e} {','.join(f'{x:.4f}' for x in m['mean_ratio']):<22} "
+              f"{fmt_t(m['t_target_s']):>8} {sp:>8}")
+    p()
+    for v, g in res["geomean_speedup"].items():
+        n = sum(1 for e in res["scenes"] if e["mitsuba"][v]["speedup"])
+        p(f"geometric mean speed-up vs {v} over {n} scene(s): " + ("-" if g is None else f"{g:.2f}x"))
+    for s in res["skipped"]:
+        p(f"skipped {s['scene']}: {s['reason']}")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--scenes", default="cornell,materials,veach",
+                    help="comma-separated names in crates/steradian-mitsuba/tests/reference/ "
+                         "(or paths to X.xml with X-ref.exr beside); default %(default)s")
+    ap.add_argument("--spp", type=int, default=64)
+    ap.add_argument("--variant", default="llvm_ad_rgb",
+                    help="Mitsuba variant(s), comma-separated, e.g. scalar_rgb,llvm_ad_rgb; default %(default)s")
+    ap.add_argument("--threads", type=int, default=0, help="worker threads for both renderers (0 = all cores)")
+    ap.add_argument("--repeat", type=int, default=3, help="timed runs per renderer; the median is reported")
+    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--json", metavar="FILE", help="also write the results as JSON to FILE ('-' = stdout only)")
+    ap.add_argument("--keep", metavar="DIR", help="keep the rendered EXRs in DIR")
+    ap.add_argument("--no-build", action="store_true", help="use target/release/steradian as it is")
+    a = ap.parse_args(argv)
+    if a.spp < 1 or a.repeat < 1 or a.threads < 0:
+        ap.error("--spp and --repeat must be >= 1, --threads >= 0")
+    res = run([s for s in a.scenes.split(",") if s], a.spp, [v for v in a.variant.split(",") if v],
+              a.repeat, a.threads, a.seed, a.keep, not a.no_build)
+    if a.json == "-":
+        print(json.dumps(res, indent=1))
+    else:
+        report(res)
+        if a.json:
+            with open(a.json, "w") as f:
+                json.dump(res, f, indent=1)
+    return res
+
+
+if __name__ == "__main__":
+    main()

@@ -203,7 +203,7 @@ fn check_close(a: f64, b: f64, name: &str) -> Result<f64, String> {
 /// ∫ f(cos θ) dω over the upper hemisphere for an azimuth-independent integrand, by
 /// 64-point Gauss–Legendre on [0, 1] in cos θ split into 64 panels (dω = 2π d(cos θ)).
 fn hemisphere_integral(f: impl Fn(f64) -> f64) -> f64 {
-    let (x, w) = gauss_legendre_16();
+    let (x, w) = rad::gauss_legendre::<16>();
     let panels = 64;
     let mut acc = 0.0;
     for k in 0..panels {
@@ -214,33 +214,6 @@ fn hemisphere_integral(f: impl Fn(f64) -> f64) -> f64 {
         }
     }
     2.0 * std::f64::consts::PI * acc
-}
-
-fn gauss_legendre_16() -> ([f64; 16], [f64; 16]) {
-    const N: usize = 16;
-    let (mut x, mut w) = ([0.0; N], [0.0; N]);
-    for i in 0..N / 2 {
-        let mut z = (std::f64::consts::PI * (i as f64 + 0.75) / (N as f64 + 0.5)).cos();
-        loop {
-            let (mut p1, mut p2) = (1.0, 0.0);
-            for j in 0..N {
-                let p3 = p2;
-                p2 = p1;
-                p1 = ((2 * j + 1) as f64 * z * p2 - j as f64 * p3) / (j + 1) as f64;
-            }
-            let pp = N as f64 * (z * p1 - p2) / (z * z - 1.0);
-            let dz = p1 / pp;
-            z -= dz;
-            if dz.abs() < 1e-15 {
-                x[i] = -z;
-                x[N - 1 - i] = z;
-                w[i] = 2.0 / ((1.0 - z * z) * pp * pp);
-                w[N - 1 - i] = w[i];
-                break;
-            }
-        }
-    }
-    (x, w)
 }
 
 /// Runs every math case.

@@ -112,7 +112,7 @@ pub fn disk_solid_angle(p: DVec3, c: DVec3, n: DVec3, radius: f64) -> f64 {
         return 0.0;
     }
     let (u, v) = orthonormal_pair(n);
-    let (nodes, weights) = gauss_legendre_64();
+    let (nodes, weights) = gauss_legendre::<64>();
     let mut acc = 0.0;
     for (i, &xr) in nodes.iter().enumerate() {
         let r = 0.5 * radius * (xr + 1.0);
@@ -162,9 +162,9 @@ fn orthonormal_pair(n: DVec3) -> (DVec3, DVec3) {
     (u, n.cross(u))
 }
 
-/// 64-point Gauss–Legendre nodes and weights on [−1, 1] (Newton iteration on P₆₄).
-fn gauss_legendre_64() -> ([f64; 64], [f64; 64]) {
-    const N: usize = 64;
+/// N-point Gauss–Legendre nodes and weights on [−1, 1] (Newton iteration on P_N); exact for
+/// polynomials of degree 2N − 1.
+pub fn gauss_legendre<const N: usize>() -> ([f64; N], [f64; N]) {
     let mut x = [0.0; N];
     let mut w = [0.0; N];
     for i in 0..N / 2 {

@@ -135,19 +135,26 @@ impl Scene {
         if es.support == Support::Extended {
             es.pdf *= sel;
         }
+        if !self.unoccluded(p, n, &es) {
+            return None;
+        }
+        Some(es)
+    }
+
+    /// True when nothing blocks the light sample `es` seen from the surface point `p` with
+    /// geometric normal `n` (the shadow ray is offset off the surface and stops just short of
+    /// the light).
+    #[inline]
+    pub fn unoccluded(&self, p: Vec3, n: Vec3, es: &EmitterSample) -> bool {
         let origin = crate::geometry::offset_ray_origin(p, n, es.wi);
         let shadow = if es.dist.is_finite() {
-            let target = p + es.wi * es.dist;
-            let d = target - origin;
+            let d = p + es.wi * es.dist - origin;
             let dist = d.length();
             Ray::new(origin, d / dist, dist * (1.0 - crate::geometry::interaction::SHADOW_EPSILON))
         } else {
             Ray::infinite(origin, es.wi)
         };
-        if self.occluded(&shadow) {
-            return None;
-        }
-        Some(es)
+        !self.occluded(&shadow)
     }
 
     /// Solid-angle density (selection included) with which [`Scene::sample_emitter_direction`]

@@ -66,16 +66,7 @@ pub fn estimate_irradiance(scene: &Scene, integrator: &Integrator, p: Vec3, n: V
         if cos <= 0.0 {
             continue;
         }
-        let origin = offset_ray_origin(p, n, es.wi);
-        let shadow = if es.dist.is_finite() {
-            let target = p + es.wi * es.dist;
-            let d = target - origin;
-            let dist = d.length();
-            Ray::new(origin, d / dist, dist * (1.0 - crate::geometry::interaction::SHADOW_EPSILON))
-        } else {
-            Ray::infinite(origin, es.wi)
-        };
-        if scene.occluded(&shadow) {
+        if !scene.unoccluded(p, n, &es) {
             continue;
         }
         let w = match es.support {

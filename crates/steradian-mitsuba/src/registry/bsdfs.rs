@@ -1,5 +1,5 @@
 //! BSDF plugins: `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`,
-//! `thindielectric`, `roughdielectric`. Parameters and defaults are Mitsuba 3's (see each
+//! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`. Parameters and defaults are Mitsuba 3's (see each
 //! plugin's documentation in `steradian::bsdf`); only constant spectra and floats are
 //! accepted (no textures yet).
 
@@ -7,8 +7,9 @@ use std::sync::Arc;
 
 use steradian::bsdf::ior::{conductor_preset, lookup_ior};
 use steradian::bsdf::{
-    Bsdf, Conductor, Dielectric, Diffuse, MicrofacetDistribution, MicrofacetKind, RoughConductor,
-    RoughDielectric, ThinDielectric, TwoSided,
+    Bsdf, Conductor, Dielectric, Diffuse, InternalScattering, MicrofacetDistribution,
+    MicrofacetKind, Plastic, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric,
+    TwoSided,
 };
 use steradian::Spectrum;
 
@@ -25,6 +26,8 @@ const KNOWN: &[&str] = &[
     "dielectric",
     "thindielectric",
     "roughdielectric",
+    "plastic",
+    "roughplastic",
 ];
 
 /// An IOR given as a number or as a name from Mitsuba's table (`int_ior`, `ext_ior`).
@@ -197,6 +200,33 @@ pub(crate) fn build(node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
                 }
             }
         }
+        "plastic" | "roughplastic" => {
+            // Mitsuba: plastic coatings default to polypropylene in air.
+            let eta = ior(node, "int_ior", "polypropylene")? / ior(node, "ext_ior", "air")?;
+            let diffuse = spectrum(node, "diffuse_reflectance", 0.5)?.into();
+            let specular = spectrum(node, "specular_reflectance", 1.0)?.into();
+            let internal = if p.get_bool("nonlinear")?.unwrap_or(false) {
+                InternalScattering::Nonlinear
+            } else {
+                InternalScattering::Linear
+            };
+            if node.plugin_type == "plastic" {
+                Bsdf::Plastic(Plastic::new(eta, diffuse, specular, internal))
+            } else {
+                if eta == 1.0 {
+                    return Err(at(node)(
+                        "the interior and exterior IORs must differ".into(),
+                    ));
+                }
+                let d = microfacet(node)?;
+                if !d.is_isotropic() {
+                    return Err(at(node)(
+                        "roughplastic supports isotropic roughness only (use 'alpha')".into(),
+                    ));
+                }
+                Bsdf::RoughPlastic(RoughPlastic::new(d, eta, diffuse, specular, internal))
+            }
+        }
         _ => return Err(unknown_type(node, KNOWN)),
     };
     node.check_all_used()?;
@@ -322,6 +352,37 @@ mod tests {
         assert!(e.contains("differ"), "{e}");
         let e = load(r#"<bsdf type="dielectric"><float name="alpha" value="0.1"/></bsdf>"#)
             .unwrap_err();
+        assert!(e.contains("unreferenced"), "{e}");
+    }
+
+    #[test]
+    fn plastics() {
+        for t in ["plastic", "roughplastic"] {
+            let b = one(&format!(r#"<bsdf type="{t}"/>"#));
+            let (eta, internal) = match &b {
+                Bsdf::Plastic(p) => (p.eta, p.internal),
+                Bsdf::RoughPlastic(p) => {
+                    let d = p.distribution;
+                    assert_eq!((d.kind, d.alpha_u), (steradian::bsdf::MicrofacetKind::Beckmann, 0.1));
+                    (p.eta, p.internal)
+                }
+                b => panic!("{b:?}"),
+            };
+            assert!((eta - 1.49 / 1.000277).abs() < 1e-6, "{t}: {eta}");
+            assert_eq!(internal, steradian::bsdf::InternalScattering::Linear);
+        }
+        match one(r#"<bsdf type="roughplastic"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/><boolean name="nonlinear" value="true"/><rgb name="diffuse_reflectance" value="0.1, 0.2, 0.3"/><float name="int_ior" value="1.6"/></bsdf>"#) {
+            Bsdf::RoughPlastic(p) => {
+                assert_eq!((p.distribution.kind, p.distribution.alpha_u), (steradian::bsdf::MicrofacetKind::Ggx, 0.3));
+                assert_eq!(p.internal, steradian::bsdf::InternalScattering::Nonlinear);
+            }
+            b => panic!("{b:?}"),
+        }
+        let e = load(r#"<bsdf type="roughplastic"><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/></bsdf>"#).unwrap_err();
+        assert!(e.contains("isotropic") && e.contains("t.xml:1:"), "{e}");
+        let e = load(r#"<bsdf type="roughplastic"><float name="int_ior" value="1.0"/><float name="ext_ior" value="1.0"/></bsdf>"#).unwrap_err();
+        assert!(e.contains("differ"), "{e}");
+        let e = load(r#"<bsdf type="plastic"><float name="alpha" value="0.1"/></bsdf>"#).unwrap_err();
         assert!(e.contains("unreferenced"), "{e}");
     }
 

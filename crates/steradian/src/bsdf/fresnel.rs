@@ -67,6 +67,20 @@ pub fn fresnel_conductor(cos_theta_i: f32, eta: Spectrum, k: Spectrum) -> Spectr
     Spectrum::new(f(eta.x, k.x), f(eta.y, k.y), f(eta.z, k.z))
 }
 
+/// Diffuse Fresnel reflectance F_dr(η) = 2∫₀¹ F(μ, η) μ dμ: the fraction of uniformly
+/// diffuse (Lambertian) radiance that an interface of relative IOR η reflects back. Mitsuba's
+/// fits, which `plastic` relies on: Egan & Hilgeman (1973) for η < 1, d'Eon & Irving (2011)
+/// otherwise (relative error ≤ 0.2 % for 1 ≤ η ≤ 10; checked against quadrature in the tests).
+pub fn fresnel_diffuse_reflectance(eta: f32) -> f32 {
+    let inv = 1.0 / eta;
+    if eta < 1.0 {
+        0.0636 * inv + eta * (eta * -1.4399 + 0.7099) + 0.6681
+    } else {
+        let p = [0.919317f32, -3.4793, 6.75335, -7.80989, 4.98554, -1.36881];
+        p.iter().rev().fold(0.0, |acc, c| acc * inv + c)
+    }
+}
+
 /// Mirror direction about the shading normal (+z).
 #[inline]
 pub fn reflect(w: Vec3) -> Vec3 {
@@ -96,6 +110,21 @@ pub fn refract_about(w: Vec3, m: Vec3, cos_theta_t: f32, eta_ti: f32) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn diffuse_reflectance_fit_matches_quadrature() {
+        // F_dr = 2∫ F(μ) μ dμ by Gauss–Legendre on [0, 1]; the fits are good to 0.2 % (η > 1)
+        // and 1 % (η < 1, Egan–Hilgeman at these IORs).
+        let (x, w) = crate::radiometry::gauss_legendre::<64>();
+        for (eta, tol) in [(1.1f32, 2e-3), (1.333, 2e-3), (1.49, 2e-3), (2.0, 2e-3), (1.0 / 1.49, 1e-2), (1.0 / 1.333, 1e-2)] {
+            let exact: f64 = x.iter().zip(&w).map(|(&xi, &wi)| {
+                let mu = 0.5 * (xi + 1.0);
+                wi * 0.5 * 2.0 * fresnel_dielectric(mu as f32, eta).r as f64 * mu
+            }).sum();
+            let fit = fresnel_diffuse_reflectance(eta) as f64;
+            assert!((fit - exact).abs() <= tol * exact, "η = {eta}: fit {fit} vs quadrature {exact}");
+        }
+    }
 
     #[test]
     fn normal_incidence_dielectric() {

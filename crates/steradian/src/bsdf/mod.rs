@@ -12,8 +12,10 @@ mod diffuse;
 pub mod fresnel;
 pub mod ior;
 pub mod microfacet;
+mod plastic;
 mod roughconductor;
 mod roughdielectric;
+mod roughplastic;
 mod thindielectric;
 mod twosided;
 
@@ -21,8 +23,10 @@ pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
 pub use microfacet::{MicrofacetDistribution, MicrofacetKind};
+pub use plastic::{InternalScattering, Plastic};
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
+pub use roughplastic::RoughPlastic;
 pub use thindielectric::ThinDielectric;
 pub use twosided::TwoSided;
 
@@ -44,7 +48,8 @@ pub enum Lobe {
 pub struct BsdfSample {
     /// Sampled incident direction, local frame.
     pub wi: Vec3,
-    /// Density of `wi` in 1/sr (meaningless for `Lobe::Delta`, where it is set to 1).
+    /// Density of `wi` in 1/sr; for `Lobe::Delta`, the probability of having chosen that delta
+    /// lobe (1 when it is the BSDF's only lobe). MIS never uses it for delta lobes.
     pub pdf: f32,
     /// The Monte Carlo weight ρ(wo, wi)·|cos θi| / pdf (dimensionless).
     pub weight: Spectrum,
@@ -72,6 +77,8 @@ pub enum Bsdf {
     Dielectric(Dielectric),
     ThinDielectric(ThinDielectric),
     RoughDielectric(RoughDielectric),
+    Plastic(Plastic),
+    RoughPlastic(RoughPlastic),
 }
 
 /// Dispatches a method call to the variant's implementation.
@@ -85,6 +92,8 @@ macro_rules! dispatch {
             Bsdf::Dielectric($b) => $e,
             Bsdf::ThinDielectric($b) => $e,
             Bsdf::RoughDielectric($b) => $e,
+            Bsdf::Plastic($b) => $e,
+            Bsdf::RoughPlastic($b) => $e,
         }
     };
 }
@@ -112,7 +121,7 @@ impl Bsdf {
     #[inline]
     pub fn has_smooth_lobe(&self) -> bool {
         match self {
-            Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::RoughDielectric(_) => true,
+            Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::RoughDielectric(_) | Bsdf::Plastic(_) | Bsdf::RoughPlastic(_) => true,
             Bsdf::Conductor(_) | Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided(b) => b.has_smooth_lobe(),
         }

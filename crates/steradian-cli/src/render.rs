@@ -10,6 +10,7 @@ use indicatif::{ProgressBar, ProgressStyle};
 use steradian::film::{write_exr, write_png};
 use steradian::film::{false_color_png, Image};
 use steradian::integrator::{render, PixelQuantity, Progress, RenderOptions};
+use steradian::sampling::SamplerKind;
 
 /// The built-in scene, rendered when no scene file is given.
 const BUILTIN_SCENE: &str = include_str!("../../../scenes/cornell-box.xml");
@@ -29,6 +30,11 @@ pub struct RenderArgs {
     /// Random seed (overrides the scene's sampler).
     #[arg(long)]
     seed: Option<u64>,
+    /// Sample generator: `sobol` (Owen-scrambled Sobol points, the default for cameras,
+    /// whatever Mitsuba sampler the scene names) or `independent` (i.i.d. numbers, the
+    /// default for meters, whose error bars assume them).
+    #[arg(long, value_enum)]
+    sampler: Option<SamplerArg>,
     /// Render the sensor with this id.
     #[arg(long)]
     sensor: Option<String>,
@@ -49,6 +55,12 @@ pub struct RenderArgs {
     /// Do not show the progress bar.
     #[arg(long)]
     quiet: bool,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum SamplerArg {
+    Sobol,
+    Independent,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -164,6 +176,10 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let opts = RenderOptions {
         spp: args.spp,
         seed: args.seed,
+        sampler: args.sampler.map(|s| match s {
+            SamplerArg::Sobol => SamplerKind::Sobol,
+            SamplerArg::Independent => SamplerKind::Independent,
+        }),
         threads: args.threads,
         sensor,
         cancel: Some(&cancel),

@@ -75,14 +75,17 @@ fn build_film(node: &PluginNode) -> Result<Film, LoadError> {
     Ok(film)
 }
 
+/// Every Mitsuba sampler type promises the same expectation and differs only in noise;
+/// steradian draws Owen-scrambled Sobol points for all of them (unbiased, and lower error
+/// than any of them). `--sampler independent` restores i.i.d. numbers.
 fn build_sampler(node: &PluginNode) -> Result<Sampler, LoadError> {
     let kind = match node.plugin_type.as_str() {
-        "independent" => SamplerKind::Independent,
+        "independent" => SamplerKind::Sobol,
         "stratified" | "multijitter" => {
             if node.props.get_bool("jitter")? == Some(false) {
                 return Err(LoadError::at(node.props.position("jitter").unwrap(), format!("{}: jitter = false (biased) is not supported", node.desc())));
             }
-            SamplerKind::Stratified
+            SamplerKind::Sobol
         }
         "orthogonal" => {
             if let Some(s) = node.props.get_int("strength")? {
@@ -93,9 +96,9 @@ fn build_sampler(node: &PluginNode) -> Result<Sampler, LoadError> {
             if node.props.get_bool("jitter")? == Some(false) {
                 return Err(LoadError::at(node.props.position("jitter").unwrap(), "orthogonal: jitter = false (biased) is not supported"));
             }
-            SamplerKind::Stratified
+            SamplerKind::Sobol
         }
-        "ldsampler" => SamplerKind::Stratified,
+        "ldsampler" => SamplerKind::Sobol,
         _ => return Err(unknown_type(node, &["independent", "stratified", "multijitter", "orthogonal", "ldsampler"])),
     };
     let sample_count = positive_int(node, "sample_count", 4)?;

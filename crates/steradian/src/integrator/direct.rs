@@ -70,8 +70,8 @@ impl DirectIntegrator {
         }
 
         for _ in 0..self.bsdf_samples {
-            let u1 = sampler.next_1d();
-            let Some(bs) = bsdf.sample(&sp, wo, u1, sampler.next_2d()) else { continue };
+            let u2 = sampler.next_2d();
+            let Some(bs) = bsdf.sample(&sp, wo, sampler.next_1d(), u2) else { continue };
             let d = si.to_world(bs.wi).normalize();
             let next = si.spawn_ray(d);
             let (le, e, p_light, n_light) = match scene.intersect(&next) {

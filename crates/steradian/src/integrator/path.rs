@@ -102,8 +102,15 @@ impl PathTracer {
             let sp = ShadingPoint { uv: si.uv };
             let wo = si.to_local(si.wo);
 
-            // next-event estimation
+            // Six numbers per vertex, drawn in a fixed order so that with Sobol points each pair
+            // is a well-stratified 2-D projection: light (2-D), BSDF direction (2-D), lobe
+            // choice, Russian roulette (drawn even when unused, to keep the layout fixed).
             let u_light = sampler.next_2d();
+            let u2 = sampler.next_2d();
+            let u1 = sampler.next_1d();
+            let u_rr = sampler.next_1d();
+
+            // next-event estimation
             if bsdf.has_smooth_lobe() {
                 if let Some(es) = scene.sample_emitter_direction(si.p, si.n, u_light) {
                     let wi = si.to_local(es.wi);
@@ -119,8 +126,6 @@ impl PathTracer {
             }
 
             // continue the path by sampling the BSDF
-            let u1 = sampler.next_1d();
-            let u2 = sampler.next_2d();
             let Some(bs) = bsdf.sample(&sp, wo, u1, u2) else { break };
             beta *= bs.weight;
             eta *= bs.eta;
@@ -136,7 +141,7 @@ impl PathTracer {
             }
             if depth >= self.rr_depth {
                 let q = (beta_max * eta * eta).min(0.95);
-                if sampler.next_1d() >= q {
+                if u_rr >= q {
                     break;
                 }
                 beta /= q;

@@ -17,7 +17,7 @@ use rayon::prelude::*;
 use crate::film::{Film, ImageBlock};
 use crate::geometry::Ray;
 use crate::integrator::estimate_irradiance;
-use crate::sampling::PixelSampler;
+use crate::sampling::{PixelSampler, SamplerKind};
 use crate::scene::Scene;
 use crate::sensor::Sensor;
 use crate::Spectrum;
@@ -57,6 +57,9 @@ pub struct RenderOptions<'a> {
     pub spp: Option<u32>,
     /// Seed; `None` = the sensor's sampler's seed.
     pub seed: Option<u64>,
+    /// Sample generator; `None` = Sobol points for cameras, i.i.d. numbers for meters (whose
+    /// error bars assume independent samples).
+    pub sampler: Option<SamplerKind>,
     /// Worker threads; `None` = all cores.
     pub threads: Option<usize>,
     /// Which sensor; `None` = the first.
@@ -127,6 +130,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
     }
     let spp = sampler.sample_count;
     let meter = sensor.is_meter();
+    sampler.kind = opts.sampler.unwrap_or(if meter { SamplerKind::Independent } else { sampler.kind });
     if opts.quantity == PixelQuantity::SurfaceIrradiance && meter {
         return Err(RenderError::NotACamera);
     }

@@ -3,6 +3,7 @@
 
 mod pcg32;
 mod sampler;
+pub mod spherical_rectangle;
 pub mod warp;
 
 pub use pcg32::Pcg32;

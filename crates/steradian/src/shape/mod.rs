@@ -166,6 +166,7 @@ impl Shape {
     pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
         match self {
             Shape::Sphere(s) => s.sample_direction(reference, u),
+            Shape::Rectangle(s) => s.sample_direction(reference, u),
             _ => direction_from_position(reference, &self.sample_position(u)),
         }
     }
@@ -175,6 +176,7 @@ impl Shape {
     pub fn pdf_direction(&self, reference: Vec3, p: Vec3, n: Vec3) -> f32 {
         match self {
             Shape::Sphere(s) => s.pdf_direction(reference, p, n),
+            Shape::Rectangle(s) => s.pdf_direction(reference, p, n),
             _ => {
                 let area = self.surface_area();
                 if area > 0.0 {

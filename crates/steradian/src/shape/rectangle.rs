@@ -10,11 +10,15 @@
 //!
 //! steradian computes: the world normal `normalize(to_world⁻ᵀ · (0,0,1))` (negated by
 //! `flip_normals`), uv = ((x+1)/2, (y+1)/2) of the local hit point, the area
-//! `4·|to_world·x̂ × to_world·ŷ|` in m², and uniform area sampling (pdf 1/area).
+//! `4·|to_world·x̂ × to_world·ŷ|` in m², and uniform area sampling (pdf 1/area). Seen
+//! from a point, a true rectangle (perpendicular edges) is sampled uniformly in the solid
+//! angle it subtends ([`SphericalRectangle`]) unless that solid angle is tiny (< 3·10⁻⁴ sr,
+//! where area sampling is as good and better conditioned) or nearly a hemisphere.
 
 use glam::{Vec2, Vec3};
 
-use super::PositionSample;
+use super::{direction_from_position, is_positive_finite, DirectionSample, PositionSample};
+use crate::sampling::spherical_rectangle::SphericalRectangle;
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
 
 #[derive(Clone, Debug)]
@@ -23,7 +27,12 @@ pub struct Rectangle {
     n: Vec3,
     dpdu: Vec3,
     area: f32,
+    /// Corner and the two edges, when they are perpendicular (a true rectangle).
+    edges: Option<(Vec3, Vec3, Vec3)>,
 }
+
+/// Solid angles (sr) within which spherical-rectangle sampling is used (pbrt-v4's bounds).
+const SOLID_ANGLE_SAMPLING: std::ops::Range<f32> = 3e-4..6.22;
 
 impl Rectangle {
     pub fn new(to_world: &Transform, flip_normals: bool) -> Rectangle {
@@ -31,7 +40,10 @@ impl Rectangle {
         let n = if flip_normals { -n } else { n };
         let dpdu = to_world.vector(Vec3::X * 2.0);
         let dpdv = to_world.vector(Vec3::Y * 2.0);
-        Rectangle { to_world: *to_world, n, dpdu, area: dpdu.cross(dpdv).length() }
+        let corner = to_world.point(Vec3::new(-1.0, -1.0, 0.0));
+        let perpendicular = dpdu.dot(dpdv).abs() <= 1e-5 * dpdu.length() * dpdv.length();
+        let edges = perpendicular.then_some((corner, dpdu, dpdv));
+        Rectangle { to_world: *to_world, n, dpdu, area: dpdu.cross(dpdv).length(), edges }
     }
 
     /// World normal of the front side.
@@ -78,6 +90,38 @@ impl Rectangle {
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,
+        }
+    }
+
+    /// The rectangle as seen from `reference`, when solid-angle sampling applies there.
+    fn spherical(&self, reference: Vec3) -> Option<SphericalRectangle> {
+        let (corner, ex, ey) = self.edges?;
+        let sr = SphericalRectangle::new(reference, corner, ex, ey);
+        SOLID_ANGLE_SAMPLING.contains(&sr.solid_angle).then_some(sr)
+    }
+
+    /// A point seen from `reference`, uniformly in solid angle where possible.
+    pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
+        let Some(sr) = self.spherical(reference) else {
+            return direction_from_position(reference, &self.sample_position(u));
+        };
+        let p = sr.sample(u);
+        let d = p - reference;
+        let dist = d.length();
+        let pdf = 1.0 / sr.solid_angle;
+        if !is_positive_finite(dist) || !is_positive_finite(pdf) {
+            return None;
+        }
+        let local = self.to_world.inv.transform_point3(p);
+        let uv = (Vec2::new(local.x, local.y) * 0.5 + 0.5).clamp(Vec2::ZERO, Vec2::ONE);
+        Some(DirectionSample { p, n: self.n, uv, wi: d / dist, dist, pdf })
+    }
+
+    /// Density per solid angle of [`Rectangle::sample_direction`] for the point `p`.
+    pub fn pdf_direction(&self, reference: Vec3, p: Vec3, n: Vec3) -> f32 {
+        match self.spherical(reference) {
+            Some(sr) => 1.0 / sr.solid_angle,
+            None => super::area_to_solid_angle(1.0 / self.area, reference, p, n),
         }
     }
 

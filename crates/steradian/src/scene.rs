@@ -44,6 +44,9 @@ pub struct Scene {
     pub sensors: Vec<Sensor>,
     pub integrator: Integrator,
     accel: Accel,
+    /// Next-event estimation's light choice: probability of each emitter, and the running sum.
+    light_pmf: Vec<f32>,
+    light_cdf: Vec<f32>,
 }
 
 impl Scene {
@@ -67,7 +70,10 @@ impl Scene {
         }
         let integrator = desc.integrator.ok_or("the scene has no integrator")?;
         let accel = Accel::build(&shapes);
+        let (light_pmf, light_cdf) = integrator.light_selection().distribution(&desc.emitters, &shapes, accel.bounds());
         Ok(Scene {
+            light_pmf,
+            light_cdf,
             shapes,
             bindings,
             bsdfs: desc.bsdfs,
@@ -109,11 +115,10 @@ impl Scene {
         Some((e, &self.emitters[e as usize]))
     }
 
-    /// Probability of choosing emitter `e` for next-event estimation (uniform, as Mitsuba with
-    /// the default `sampling_weight`).
+    /// Probability of choosing emitter `e` for next-event estimation (see [`light_selection`]).
     #[inline]
-    pub fn emitter_selection_pdf(&self, _e: u32) -> f32 {
-        1.0 / self.emitters.len() as f32
+    pub fn emitter_selection_pdf(&self, e: u32) -> f32 {
+        self.light_pmf[e as usize]
     }
 
     /// Picks a light and samples a direction to it from `p` (a surface point with geometric
@@ -125,9 +130,10 @@ impl Scene {
         if count == 0 {
             return None;
         }
-        let x = u.x * count as f32;
-        let index = (x as usize).min(count - 1);
-        let u = Vec2::new((x - index as f32).min(1.0 - f32::EPSILON / 2.0), u.y);
+        // invert the CDF, then reuse u.x's position inside the chosen interval
+        let index = self.light_cdf.partition_point(|&c| c <= u.x).min(count - 1);
+        let lo = if index == 0 { 0.0 } else { self.light_cdf[index - 1] };
+        let u = Vec2::new(((u.x - lo) / self.light_pmf[index]).clamp(0.0, 1.0 - f32::EPSILON / 2.0), u.y);
         let emitter = &self.emitters[index];
         let mut es = emitter.sample_direction(&self.shapes, p, u)?;
         let sel = self.emitter_selection_pdf(index as u32);
@@ -169,3 +175,4 @@ impl Scene {
         self.sensors.iter().position(|s| s.id == id)
     }
 }
+

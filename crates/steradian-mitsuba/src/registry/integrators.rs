@@ -1,7 +1,7 @@
 //! Integrator plugins: `path`, `direct`.
 
 use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
-use steradian::integrator::{parse_max_depth, EmitterVisibility};
+use steradian::integrator::{parse_max_depth, EmitterVisibility, LightSelection};
 
 use super::{at_property, unknown_type};
 use crate::error::LoadError;
@@ -24,6 +24,16 @@ fn count(node: &PluginNode, name: &str, default: i64) -> Result<u32, LoadError> 
     })
 }
 
+/// steradian's own `light_selection` parameter (default `uniform`, Mitsuba's rule).
+fn light_selection(node: &PluginNode) -> Result<LightSelection, LoadError> {
+    match node.props.get_string("light_selection")? {
+        None => Ok(LightSelection::Uniform),
+        Some(s) => LightSelection::parse(&s).map_err(|m| {
+            LoadError::at(node.props.position("light_selection").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
+        }),
+    }
+}
+
 pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
     let p = &node.props;
     let integrator = match node.plugin_type.as_str() {
@@ -34,13 +44,13 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
                 let pos = p.position("rr_depth").unwrap_or(&node.pos);
                 return Err(LoadError::at(pos, format!("{}: 'rr_depth' must be at least 1", node.desc())));
             }
-            Integrator::Path(PathTracer { max_depth, rr_depth, emitters: visibility(p.get_bool("hide_emitters")?) })
+            Integrator::Path(PathTracer { max_depth, rr_depth, emitters: visibility(p.get_bool("hide_emitters")?), light_selection: light_selection(node)? })
         }
         "direct" => {
             let shading = count(node, "shading_samples", 1)?;
             let emitter_samples = count(node, "emitter_samples", shading as i64)?;
             let bsdf_samples = count(node, "bsdf_samples", shading as i64)?;
-            Integrator::Direct(DirectIntegrator { emitter_samples, bsdf_samples, emitters: visibility(p.get_bool("hide_emitters")?) })
+            Integrator::Direct(DirectIntegrator { emitter_samples, bsdf_samples, emitters: visibility(p.get_bool("hide_emitters")?), light_selection: light_selection(node)? })
         }
         _ => return Err(unknown_type(node, KNOWN)),
     };

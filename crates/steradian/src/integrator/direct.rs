@@ -6,6 +6,7 @@
 //! | `emitter_samples` | integer | shading_samples| light samples per camera ray |
 //! | `bsdf_samples`    | integer | shading_samples| BSDF samples per camera ray |
 //! | `hide_emitters`   | boolean | false          | emitters seen directly contribute nothing |
+//! | `light_selection` | string | `uniform`     | steradian's own: `uniform` or `power` (see `light_selection.rs`) |
 //!
 //! Light samples and BSDF samples are combined with the power heuristic, each strategy weighted
 //! by its sample count, as Mitsuba 3's `direct` does.
@@ -13,6 +14,7 @@
 use glam::{Vec2, Vec3};
 
 use super::mis::power_heuristic;
+use super::LightSelection;
 use super::path::EmitterVisibility;
 use crate::bsdf::{Lobe, ShadingPoint};
 use crate::emitter::Support;
@@ -26,11 +28,12 @@ pub struct DirectIntegrator {
     pub emitter_samples: u32,
     pub bsdf_samples: u32,
     pub emitters: EmitterVisibility,
+    pub light_selection: LightSelection,
 }
 
 impl Default for DirectIntegrator {
     fn default() -> Self {
-        DirectIntegrator { emitter_samples: 1, bsdf_samples: 1, emitters: EmitterVisibility::Visible }
+        DirectIntegrator { emitter_samples: 1, bsdf_samples: 1, emitters: EmitterVisibility::Visible, light_selection: LightSelection::Uniform }
     }
 }
 

@@ -3,12 +3,14 @@
 
 mod direct;
 mod irradiance;
+mod light_selection;
 mod mis;
 mod path;
 mod render;
 
 pub use direct::DirectIntegrator;
 pub use irradiance::estimate_irradiance;
+pub use light_selection::LightSelection;
 pub use path::{parse_max_depth, EmitterVisibility, PathTracer};
 pub use render::{render, PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};
 
@@ -25,6 +27,14 @@ pub enum Integrator {
 }
 
 impl Integrator {
+    /// How next-event estimation chooses among lights.
+    pub fn light_selection(&self) -> LightSelection {
+        match self {
+            Integrator::Path(p) => p.light_selection,
+            Integrator::Direct(d) => d.light_selection,
+        }
+    }
+
     /// An unbiased estimate of the radiance L (W/(m²·sr)) arriving at the ray's origin from
     /// direction −ray.d.
     #[inline]

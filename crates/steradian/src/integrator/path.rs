@@ -5,6 +5,7 @@
 //! | `max_depth`     | integer | −1 (∞)  | longest path in segments: 1 = emitters seen directly, 2 = direct lighting, 0 = black |
 //! | `rr_depth`      | integer | 5       | depth from which Russian roulette may end paths |
 //! | `hide_emitters` | boolean | false   | emitters seen directly by camera rays contribute nothing |
+//! | `light_selection` | string | `uniform` | steradian's own: `uniform` or `power` (see `light_selection.rs`) |
 //!
 //! At every vertex with a non-delta BSDF one light is chosen uniformly and sampled (next-event
 //! estimation), and the BSDF is sampled to continue the path; both estimators of emitted light
@@ -15,6 +16,7 @@
 use glam::Vec3;
 
 use super::mis::power_heuristic;
+use super::LightSelection;
 use crate::bsdf::{Lobe, ShadingPoint};
 use crate::emitter::Support;
 use crate::geometry::Ray;
@@ -35,11 +37,12 @@ pub struct PathTracer {
     pub max_depth: Option<u32>,
     pub rr_depth: u32,
     pub emitters: EmitterVisibility,
+    pub light_selection: LightSelection,
 }
 
 impl Default for PathTracer {
     fn default() -> Self {
-        PathTracer { max_depth: None, rr_depth: 5, emitters: EmitterVisibility::Visible }
+        PathTracer { max_depth: None, rr_depth: 5, emitters: EmitterVisibility::Visible, light_selection: LightSelection::Uniform }
     }
 }
 

@@ -50,7 +50,7 @@ fn unknown_shape_type() {
 
 #[test]
 fn unknown_bsdf_type() {
-    check(&err(&scene("<bsdf type=\"roughplastic\"/>")), 2, 1, &["unknown bsdf plugin type 'roughplastic'", "diffuse"]);
+    check(&err(&scene("<bsdf type=\"principled\"/>")), 2, 1, &["unknown bsdf plugin type 'principled'", "diffuse"]);
     // Nested in a shape, and nested in a twosided BSDF.
     let xml = scene("<shape type=\"sphere\">\n  <bsdf type=\"plastik\"/>\n</shape>");
     check(&err(&xml), 3, 3, &["unknown bsdf plugin type 'plastik'"]);

@@ -121,11 +121,12 @@ impl Scene {
         self.light_pmf[e as usize]
     }
 
-    /// Picks a light and samples a direction to it from `p` (a surface point with geometric
-    /// normal `n`, used to offset the shadow ray). The sample's pdf and weight include the
-    /// selection probability; occluded samples return `None`.
+    /// Picks a light and samples a direction to it from `p`. The sample's pdf and weight
+    /// include the selection probability. Visibility is *not* tested: callers first check that
+    /// the sample can contribute (BSDF and cosine nonzero), then trace the shadow ray with
+    /// [`Scene::unoccluded`], so that no ray is traced for a sample that would be discarded.
     #[inline]
-    pub fn sample_emitter_direction(&self, p: Vec3, n: Vec3, u: Vec2) -> Option<EmitterSample> {
+    pub fn sample_emitter_direction(&self, p: Vec3, u: Vec2) -> Option<EmitterSample> {
         let count = self.emitters.len();
         if count == 0 {
             return None;
@@ -140,9 +141,6 @@ impl Scene {
         es.weight /= sel;
         if es.support == Support::Extended {
             es.pdf *= sel;
-        }
-        if !self.unoccluded(p, n, &es) {
-            return None;
         }
         Some(es)
     }

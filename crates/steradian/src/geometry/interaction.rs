@@ -8,7 +8,8 @@ use super::{Frame, Ray};
 pub struct PreliminaryHit {
     /// Distance along the (unit) ray direction, m.
     pub t: f32,
-    /// Shape-specific surface parameters (triangle barycentrics b1, b2; analytic uv).
+    /// Shape-specific surface parameters (triangle barycentrics b1, b2; analytic uv, which a
+    /// shape may leave at zero and compute in its `interaction` instead).
     pub uv: Vec2,
     /// Index of the shape in the scene.
     pub shape: u32,

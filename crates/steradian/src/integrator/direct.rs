@@ -57,10 +57,10 @@ impl DirectIntegrator {
 
         if bsdf.has_smooth_lobe() {
             for _ in 0..self.emitter_samples {
-                let Some(es) = scene.sample_emitter_direction(si.p, si.n, sampler.next_2d()) else { continue };
+                let Some(es) = scene.sample_emitter_direction(si.p, sampler.next_2d()) else { continue };
                 let wi = si.to_local(es.wi);
                 let f = bsdf.eval(&sp, wo, wi) * wi.z.abs();
-                if f == Spectrum::ZERO {
+                if f == Spectrum::ZERO || !scene.unoccluded(si.p, si.n, &es) {
                     continue;
                 }
                 let w = match es.support {

@@ -115,10 +115,10 @@ impl PathTracer {
 
             // next-event estimation
             if bsdf.has_smooth_lobe() {
-                if let Some(es) = scene.sample_emitter_direction(si.p, si.n, u_light) {
+                if let Some(es) = scene.sample_emitter_direction(si.p, u_light) {
                     let wi = si.to_local(es.wi);
                     let f = bsdf.eval(&sp, wo, wi) * wi.z.abs();
-                    if f != Spectrum::ZERO {
+                    if f != Spectrum::ZERO && scene.unoccluded(si.p, si.n, &es) {
                         let w = match es.support {
                             Support::Delta => 1.0,
                             Support::Extended => power_heuristic(es.pdf, bsdf.pdf(&sp, wo, wi)),

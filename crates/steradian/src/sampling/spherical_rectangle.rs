@@ -12,6 +12,27 @@ use glam::{Vec2, Vec3};
 
 use std::f32::consts::TAU;
 
+/// A rectangle's own frame, computed once per rectangle: the corner, unit vectors along its
+/// two (perpendicular) edges, their normal, and the edge lengths (m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RectangleFrame {
+    corner: Vec3,
+    x: Vec3,
+    y: Vec3,
+    z: Vec3,
+    x_len: f32,
+    y_len: f32,
+}
+
+impl RectangleFrame {
+    /// The rectangle `corner + [0, 1]·ex + [0, 1]·ey` (ex ⊥ ey).
+    pub fn new(corner: Vec3, ex: Vec3, ey: Vec3) -> Self {
+        let (x_len, y_len) = (ex.length(), ey.length());
+        let (x, y) = (ex / x_len, ey / y_len);
+        RectangleFrame { corner, x, y, z: x.cross(y), x_len, y_len }
+    }
+}
+
 /// A rectangle as seen from a reference point, ready to be sampled.
 #[derive(Clone, Copy, Debug)]
 pub struct SphericalRectangle {
@@ -36,35 +57,49 @@ pub struct SphericalRectangle {
 impl SphericalRectangle {
     /// The rectangle `corner + [0, 1]·ex + [0, 1]·ey` (ex ⊥ ey) seen from `o`.
     pub fn new(o: Vec3, corner: Vec3, ex: Vec3, ey: Vec3) -> Self {
-        let (exl, eyl) = (ex.length(), ey.length());
-        let x = ex / exl;
-        let y = ey / eyl;
-        let mut z = x.cross(y);
-        let d = corner - o;
+        Self::from_frame(o, &RectangleFrame::new(corner, ex, ey))
+    }
+
+    /// The rectangle of `frame` seen from `o`.
+    #[inline]
+    pub fn from_frame(o: Vec3, frame: &RectangleFrame) -> Self {
+        let (x, y) = (frame.x, frame.y);
+        let mut z = frame.z;
+        let d = frame.corner - o;
         let mut z0 = d.dot(z);
         if z0 > 0.0 {
             z = -z;
             z0 = -z0;
         }
         let (x0, y0) = (d.dot(x), d.dot(y));
-        let (x1, y1) = (x0 + exl, y0 + eyl);
-        let v00 = Vec3::new(x0, y0, z0);
-        let v01 = Vec3::new(x0, y1, z0);
-        let v10 = Vec3::new(x1, y0, z0);
-        let v11 = Vec3::new(x1, y1, z0);
-        // normals of the four great-circle edges, and the interior angles between them
-        let n0 = v00.cross(v10).normalize();
-        let n1 = v10.cross(v11).normalize();
-        let n2 = v11.cross(v01).normalize();
-        let n3 = v01.cross(v00).normalize();
-        let angle = |a: Vec3, b: Vec3| (-a.dot(b)).clamp(-1.0, 1.0).acos();
-        let (g0, g1, g2, g3) = (angle(n0, n1), angle(n1, n2), angle(n2, n3), angle(n3, n0));
+        let (x1, y1) = (x0 + frame.x_len, y0 + frame.y_len);
+        // Normals of the four great-circle edges through the corners v00 → v10 → v11 → v01,
+        // in closed form (each is the cross product of two adjacent corners, normalised):
+        // n0 = (0, z0, −y0)/|·|, n1 = (−z0, 0, x1)/|·|, n2 = (0, −z0, y1)/|·|,
+        // n3 = (z0, 0, −x0)/|·|.
+        let z02 = z0 * z0;
+        let r0 = (z02 + y0 * y0).sqrt().recip();
+        let r1 = (z02 + x1 * x1).sqrt().recip();
+        let r2 = (z02 + y1 * y1).sqrt().recip();
+        let r3 = (z02 + x0 * x0).sqrt().recip();
+        // interior angles g_i = acos(−n_i·n_{i+1})
+        let g0 = acos(y0 * x1 * r0 * r1);
+        let g1 = acos(-x1 * y1 * r1 * r2);
+        let g2 = acos(y1 * x0 * r2 * r3);
+        let g3 = acos(-x0 * y0 * r3 * r0);
         let k = TAU - g2 - g3;
-        SphericalRectangle { o, x, y, z, x0, x1, y0, y1, z0, b0: n0.z, b1: n2.z, k, solid_angle: g0 + g1 - k }
+        SphericalRectangle { o, x, y, z, x0, x1, y0, y1, z0, b0: -y0 * r0, b1: y1 * r2, k, solid_angle: g0 + g1 - k }
     }
 
     /// The point of the rectangle in direction u ∈ [0, 1)² (density 1/S per steradian).
     pub fn sample(&self, u: Vec2) -> Vec3 {
+        self.sample_with_uv(u).0
+    }
+
+    /// [`SphericalRectangle::sample`], with the point's fractions (s, t) ∈ [0, 1]² along the
+    /// two edges (`corner + s·ex + t·ey`): the rectangle's uv, with no inverse transform.
+    #[inline]
+    pub fn sample_with_uv(&self, u: Vec2) -> (Vec3, Vec2) {
         // the x coordinate: invert the solid angle of the sub-rectangle [x0, xu]
         let au = u.x * self.solid_angle + self.k;
         let (sin_au, cos_au) = au.sin_cos();
@@ -80,7 +115,27 @@ impl SphericalRectangle {
         let hv2 = hv * hv;
         let yv = if hv2 < 1.0 - 1e-6 { (hv * d) / (1.0 - hv2).sqrt() } else { self.y1 };
         let yv = yv.clamp(self.y0, self.y1);
-        self.o + xu * self.x + yv * self.y + self.z0 * self.z
+        let p = self.o + xu * self.x + yv * self.y + self.z0 * self.z;
+        let uv = Vec2::new((xu - self.x0) / (self.x1 - self.x0), (yv - self.y0) / (self.y1 - self.y0));
+        (p, uv.clamp(Vec2::ZERO, Vec2::ONE))
+    }
+}
+
+/// arccos(x) for x ∈ [−1, 1] (clamped), to 2·10⁻⁸ rad: Abramowitz & Stegun 4.4.46's
+/// polynomial, arccos x = √(1−x)·Σ aᵢxⁱ for x ≥ 0 and π − arccos(−x) below. Four of these make
+/// a spherical rectangle's solid angle at every light sample, where libm's `acosf` costs
+/// several times more.
+#[inline]
+fn acos(x: f32) -> f32 {
+    const A: [f32; 8] = [1.570_796_3, -0.214_598_8, 0.088_978_99, -0.050_174_3, 0.030_891_88, -0.017_088_126, 0.006_670_09, -0.001_262_491_1];
+    let ax = x.abs().min(1.0);
+    // Horner's rule with plain products: `mul_add` would call libm's fmaf without FMA hardware
+    let p = ((((((A[7] * ax + A[6]) * ax + A[5]) * ax + A[4]) * ax + A[3]) * ax + A[2]) * ax + A[1]) * ax + A[0];
+    let r = (1.0 - ax).sqrt() * p;
+    if x < 0.0 {
+        std::f32::consts::PI - r
+    } else {
+        r
     }
 }
 
@@ -153,5 +208,26 @@ mod tests {
         let se = (p * (1.0 - p) / n as f64).sqrt();
         let f = hits as f64 / n as f64;
         assert!((f - p).abs() <= 4.0 * se, "{f} vs {p} ± {se}");
+    }
+    #[test]
+    fn fast_acos_matches_libm() {
+        for i in 0..=20_000 {
+            let x = -1.0 + i as f32 * 1e-4;
+            let err = (acos(x) as f64 - (x as f64).acos()).abs();
+            assert!(err <= 4e-7, "acos({x}): error {err}");
+        }
+        assert_eq!(acos(1.5), 0.0);
+        assert!((acos(-1.5) - std::f32::consts::PI).abs() < 1e-6);
+    }
+    #[test]
+    fn sampled_uv_locates_the_point() {
+        let (c, ex, ey) = rect();
+        let sr = SphericalRectangle::new(Vec3::new(0.3, -2.0, 0.4), c, ex, ey);
+        let mut rng = Pcg32::new(5, 3);
+        for _ in 0..1000 {
+            let (p, uv) = sr.sample_with_uv(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let q = c + uv.x * ex + uv.y * ey;
+            assert!((p - q).length() < 1e-5, "{p} vs {q} at uv {uv}");
+        }
     }
 }

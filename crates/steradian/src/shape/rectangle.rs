@@ -18,7 +18,7 @@
 use glam::{Vec2, Vec3};
 
 use super::{direction_from_position, is_positive_finite, DirectionSample, PositionSample};
-use crate::sampling::spherical_rectangle::SphericalRectangle;
+use crate::sampling::spherical_rectangle::{RectangleFrame, SphericalRectangle};
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
 
 #[derive(Clone, Debug)]
@@ -27,8 +27,8 @@ pub struct Rectangle {
     n: Vec3,
     dpdu: Vec3,
     area: f32,
-    /// Corner and the two edges, when they are perpendicular (a true rectangle).
-    edges: Option<(Vec3, Vec3, Vec3)>,
+    /// The rectangle's own frame, when its edges are perpendicular (a true rectangle).
+    frame: Option<RectangleFrame>,
 }
 
 /// Solid angles (sr) within which spherical-rectangle sampling is used (pbrt-v4's bounds).
@@ -42,8 +42,8 @@ impl Rectangle {
         let dpdv = to_world.vector(Vec3::Y * 2.0);
         let corner = to_world.point(Vec3::new(-1.0, -1.0, 0.0));
         let perpendicular = dpdu.dot(dpdv).abs() <= 1e-5 * dpdu.length() * dpdv.length();
-        let edges = perpendicular.then_some((corner, dpdu, dpdv));
-        Rectangle { to_world: *to_world, n, dpdu, area: dpdu.cross(dpdv).length(), edges }
+        let frame = perpendicular.then(|| RectangleFrame::new(corner, dpdu, dpdv));
+        Rectangle { to_world: *to_world, n, dpdu, area: dpdu.cross(dpdv).length(), frame }
     }
 
     /// World normal of the front side.
@@ -95,8 +95,7 @@ impl Rectangle {
 
     /// The rectangle as seen from `reference`, when solid-angle sampling applies there.
     fn spherical(&self, reference: Vec3) -> Option<SphericalRectangle> {
-        let (corner, ex, ey) = self.edges?;
-        let sr = SphericalRectangle::new(reference, corner, ex, ey);
+        let sr = SphericalRectangle::from_frame(reference, self.frame.as_ref()?);
         SOLID_ANGLE_SAMPLING.contains(&sr.solid_angle).then_some(sr)
     }
 
@@ -105,15 +104,13 @@ impl Rectangle {
         let Some(sr) = self.spherical(reference) else {
             return direction_from_position(reference, &self.sample_position(u));
         };
-        let p = sr.sample(u);
+        let (p, uv) = sr.sample_with_uv(u);
         let d = p - reference;
         let dist = d.length();
         let pdf = 1.0 / sr.solid_angle;
         if !is_positive_finite(dist) || !is_positive_finite(pdf) {
             return None;
         }
-        let local = self.to_world.inv.transform_point3(p);
-        let uv = (Vec2::new(local.x, local.y) * 0.5 + 0.5).clamp(Vec2::ZERO, Vec2::ONE);
         Some(DirectionSample { p, n: self.n, uv, wi: d / dist, dist, pdf })
     }
 

@@ -117,7 +117,8 @@ impl Sphere {
         if !(t > 0.0 && t < ray.t_max) {
             return None;
         }
-        Some((t, self.uv_at(ray.at(t))))
+        // uv waits for `interaction`: most candidate hits (and every shadow ray) never need it
+        Some((t, Vec2::ZERO))
     }
 
     pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
@@ -131,7 +132,7 @@ impl Sphere {
             t: hit.t,
             n,
             sh_frame: Frame::from_normal_tangent(n, dpdu),
-            uv: hit.uv,
+            uv: self.uv_at(p),
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,

@@ -9,7 +9,7 @@ use crate::emitter::{Emitter, EmitterSample, Support};
 use crate::geometry::{Aabb, Ray, SurfaceInteraction};
 use crate::integrator::Integrator;
 use crate::sensor::Sensor;
-use crate::shape::Shape;
+use crate::shape::{Shape, SurfacePoint};
 
 /// What a shape is made of and whether it glows.
 #[derive(Clone, Debug, PartialEq)]
@@ -162,10 +162,10 @@ impl Scene {
     }
 
     /// Solid-angle density (selection included) with which [`Scene::sample_emitter_direction`]
-    /// from `p` proposes direction `wi` reaching emitter `e` at `p_light` with normal `n_light`.
+    /// from `p` proposes direction `wi` reaching emitter `e` at the point `light`.
     #[inline]
-    pub fn pdf_emitter_direction(&self, e: u32, p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
-        self.emitters[e as usize].pdf_direction(&self.shapes, p, wi, p_light, n_light) * self.emitter_selection_pdf(e)
+    pub fn pdf_emitter_direction(&self, e: u32, p: Vec3, wi: Vec3, light: &SurfacePoint) -> f32 {
+        self.emitters[e as usize].pdf_direction(&self.shapes, p, wi, light) * self.emitter_selection_pdf(e)
     }
 
     /// Index of the sensor with the given `id`.

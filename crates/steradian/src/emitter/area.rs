@@ -11,7 +11,7 @@
 use glam::{Vec2, Vec3};
 
 use super::{EmitterSample, Support};
-use crate::shape::Shape;
+use crate::shape::{Shape, SurfacePoint};
 use crate::texture::Texture;
 use crate::Spectrum;
 
@@ -53,10 +53,10 @@ impl AreaLight {
     }
 
     #[inline]
-    pub fn pdf_direction(&self, shapes: &[Shape], p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
-        if n_light.dot(wi) >= 0.0 {
+    pub fn pdf_direction(&self, shapes: &[Shape], p: Vec3, wi: Vec3, light: &SurfacePoint) -> f32 {
+        if light.n.dot(wi) >= 0.0 {
             return 0.0;
         }
-        shapes[self.shape as usize].pdf_direction(p, p_light, n_light)
+        shapes[self.shape as usize].pdf_direction(p, light)
     }
 }

@@ -27,7 +27,7 @@ pub use spot::SpotLight;
 
 use glam::{Vec2, Vec3};
 
-use crate::shape::Shape;
+use crate::shape::{Shape, SurfacePoint};
 use crate::Spectrum;
 
 /// Whether a light can be hit by a ray or only reached by sampling it.
@@ -77,12 +77,12 @@ impl Emitter {
         }
     }
 
-    /// Solid-angle density with which `sample_direction` from `p` proposes the point `p_light`
-    /// (with normal `n_light`) seen in direction `wi` (0 for delta lights).
+    /// Solid-angle density with which `sample_direction` from `p` proposes the point `light`
+    /// seen in direction `wi` (0 for delta lights).
     #[inline]
-    pub fn pdf_direction(&self, shapes: &[Shape], p: Vec3, wi: Vec3, p_light: Vec3, n_light: Vec3) -> f32 {
+    pub fn pdf_direction(&self, shapes: &[Shape], p: Vec3, wi: Vec3, light: &SurfacePoint) -> f32 {
         match self {
-            Emitter::Area(e) => e.pdf_direction(shapes, p, wi, p_light, n_light),
+            Emitter::Area(e) => e.pdf_direction(shapes, p, wi, light),
             Emitter::Constant(e) => e.pdf_direction(wi),
             Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => 0.0,
         }

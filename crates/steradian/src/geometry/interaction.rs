@@ -69,6 +69,12 @@ impl SurfaceInteraction {
         self.sh_frame.to_world(w)
     }
 
+    /// The point as density queries need it (position, geometric normal, primitive).
+    #[inline]
+    pub fn surface_point(&self) -> crate::shape::SurfacePoint {
+        crate::shape::SurfacePoint { p: self.p, n: self.n, prim: self.prim }
+    }
+
     /// A ray leaving this point in direction `d` (unit), offset to avoid self-intersection.
     #[inline]
     pub fn spawn_ray(&self, d: Vec3) -> Ray {

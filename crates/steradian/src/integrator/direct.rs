@@ -21,6 +21,7 @@ use crate::emitter::Support;
 use crate::geometry::Ray;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
+use crate::shape::SurfacePoint;
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -77,13 +78,13 @@ impl DirectIntegrator {
             let Some(bs) = bsdf.sample(&sp, wo, sampler.next_1d(), u2) else { continue };
             let d = si.to_world(bs.wi).normalize();
             let next = si.spawn_ray(d);
-            let (le, e, p_light, n_light) = match scene.intersect(&next) {
+            let (le, e, light) = match scene.intersect(&next) {
                 Some(hit) => match scene.area_emitter(&hit) {
-                    Some((e, emitter)) => (emitter.radiance(hit.wo, hit.n, hit.uv), e, hit.p, hit.n),
+                    Some((e, emitter)) => (emitter.radiance(hit.wo, hit.n, hit.uv), e, hit.surface_point()),
                     None => continue,
                 },
                 None => match scene.environment {
-                    Some(env) => (scene.emitters[env as usize].radiance(-d, Vec3::ZERO, Vec2::ZERO), env, Vec3::ZERO, Vec3::ZERO),
+                    Some(env) => (scene.emitters[env as usize].radiance(-d, Vec3::ZERO, Vec2::ZERO), env, SurfacePoint::AT_INFINITY),
                     None => continue,
                 },
             };
@@ -93,7 +94,7 @@ impl DirectIntegrator {
             let w = match bs.lobe {
                 Lobe::Delta => 1.0,
                 Lobe::Smooth if ne > 0.0 && bsdf.has_smooth_lobe() => {
-                    power_heuristic(bs.pdf * nb, scene.pdf_emitter_direction(e, si.p, d, p_light, n_light) * ne)
+                    power_heuristic(bs.pdf * nb, scene.pdf_emitter_direction(e, si.p, d, &light) * ne)
                 }
                 Lobe::Smooth => 1.0,
             };

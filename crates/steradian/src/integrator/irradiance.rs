@@ -89,7 +89,7 @@ pub fn estimate_irradiance(scene: &Scene, integrator: &Integrator, p: Vec3, n: V
             if let Some((_, emitter)) = scene.area_emitter(&hit) {
                 let le = emitter.radiance(hit.wo, hit.n, hit.uv);
                 if le != Spectrum::ZERO {
-                    let pdf_e = emitter.pdf_direction(&scene.shapes, p, wi, hit.p, hit.n);
+                    let pdf_e = emitter.pdf_direction(&scene.shapes, p, wi, &hit.surface_point());
                     h += le * (PI * power_heuristic(pdf, pdf_e));
                 }
             }

@@ -22,6 +22,7 @@ use crate::emitter::Support;
 use crate::geometry::Ray;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
+use crate::shape::SurfacePoint;
 use crate::Spectrum;
 
 /// Whether directly visible emitters are drawn.
@@ -77,7 +78,7 @@ impl PathTracer {
                     let le = scene.emitters[env as usize].radiance(-ray.d, Vec3::ZERO, glam::Vec2::ZERO);
                     let w = match prev_lobe {
                         Lobe::Delta => 1.0,
-                        Lobe::Smooth => power_heuristic(prev_pdf, scene.pdf_emitter_direction(env, prev_p, ray.d, Vec3::ZERO, Vec3::ZERO)),
+                        Lobe::Smooth => power_heuristic(prev_pdf, scene.pdf_emitter_direction(env, prev_p, ray.d, &SurfacePoint::AT_INFINITY)),
                     };
                     result += beta * le * w;
                 }
@@ -89,7 +90,7 @@ impl PathTracer {
                 if le != Spectrum::ZERO {
                     let w = match prev_lobe {
                         Lobe::Delta => 1.0,
-                        Lobe::Smooth => power_heuristic(prev_pdf, scene.pdf_emitter_direction(e, prev_p, ray.d, si.p, si.n)),
+                        Lobe::Smooth => power_heuristic(prev_pdf, scene.pdf_emitter_direction(e, prev_p, ray.d, &si.surface_point())),
                     };
                     result += beta * le * w;
                 }

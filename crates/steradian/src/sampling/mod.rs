@@ -4,6 +4,7 @@
 mod pcg32;
 mod sampler;
 pub mod spherical_rectangle;
+pub mod spherical_triangle;
 pub mod warp;
 
 pub use pcg32::Pcg32;

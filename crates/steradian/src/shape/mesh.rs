@@ -10,9 +10,10 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{PositionSample, ShapeError};
+use super::{area_to_solid_angle, direction_from_position, is_positive_finite, DirectionSample, PositionSample, ShapeError};
 use crate::accel::intersect_triangle;
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
+use crate::sampling::spherical_triangle::SphericalTriangle;
 use crate::sampling::warp;
 
 /// Mesh data as read from a file (object space, before `to_world`).
@@ -224,21 +225,85 @@ impl Mesh {
         }
     }
 
-    /// Uniform by area: picks a triangle with probability proportional to its area (the
-    /// sample's x is reused after the choice), then a uniform point on it.
-    pub fn sample_position(&self, u: Vec2) -> PositionSample {
+    /// Picks a triangle with probability proportional to its area; returns it, its
+    /// probability, and `u` with the part of the sample used for the choice rescaled to [0, 1).
+    #[inline]
+    fn pick_triangle(&self, u: Vec2) -> Option<(u32, f32, Vec2)> {
         if self.cdf.is_empty() {
-            let p = self.positions.first().copied().unwrap_or(Vec3::ZERO);
-            return PositionSample { p, n: Vec3::Z, uv: Vec2::ZERO, pdf_area: 0.0 };
+            return None;
         }
         let idx = self.cdf.partition_point(|&c| c <= u.x).min(self.cdf.len() - 1);
         let lo = if idx == 0 { 0.0 } else { self.cdf[idx - 1] };
-        let hi = self.cdf[idx];
-        let ux = ((u.x - lo) / (hi - lo)).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
-        let b = warp::square_to_uniform_triangle(Vec2::new(ux, u.y));
-        let [p0, p1, p2] = self.triangle(idx as u32);
+        let pmf = self.cdf[idx] - lo;
+        let ux = ((u.x - lo) / pmf).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
+        Some((idx as u32, pmf, Vec2::new(ux, u.y)))
+    }
+
+    /// Uniform by area: picks a triangle with probability proportional to its area (the
+    /// sample's x is reused after the choice), then a uniform point on it.
+    pub fn sample_position(&self, u: Vec2) -> PositionSample {
+        let Some((prim, _, u)) = self.pick_triangle(u) else {
+            let p = self.positions.first().copied().unwrap_or(Vec3::ZERO);
+            return PositionSample { p, n: Vec3::Z, uv: Vec2::ZERO, pdf_area: 0.0 };
+        };
+        self.sample_on_triangle(prim, u)
+    }
+
+    /// A uniform point on triangle `prim`, with the whole mesh's area density 1/area.
+    fn sample_on_triangle(&self, prim: u32, u: Vec2) -> PositionSample {
+        let b = warp::square_to_uniform_triangle(u);
+        let [p0, p1, p2] = self.triangle(prim);
         let p = p0 * (1.0 - b.x - b.y) + p1 * b.x + p2 * b.y;
-        PositionSample { p, n: self.face_normal(idx as u32), uv: self.uv_at(idx as u32, b), pdf_area: 1.0 / self.area }
+        PositionSample { p, n: self.face_normal(prim), uv: self.uv_at(prim, b), pdf_area: 1.0 / self.area }
+    }
+
+    /// Triangle `prim` as seen from `reference`, when solid-angle sampling applies there.
+    #[inline]
+    fn spherical(&self, reference: Vec3, prim: u32) -> Option<SphericalTriangle> {
+        let [p0, p1, p2] = self.triangle(prim);
+        SphericalTriangle::new(reference, p0, p1, p2).filter(|st| SphericalTriangle::USEFUL.contains(&st.solid_angle()))
+    }
+
+    /// A point seen from `reference`: a triangle chosen by area, then a direction uniform in
+    /// the solid angle it subtends (a uniform point by area where that solid angle is tiny or
+    /// nearly a hemisphere). The density per steradian is pmf(triangle)/Ω.
+    pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
+        let (prim, pmf, u) = self.pick_triangle(u)?;
+        let Some(st) = self.spherical(reference, prim) else {
+            return direction_from_position(reference, &self.sample_on_triangle(prim, u), prim);
+        };
+        let wi = st.sample(u);
+        // the point where wi meets the triangle's plane, and its barycentrics
+        let [p0, p1, p2] = self.triangle(prim);
+        let (e1, e2) = (p1 - p0, p2 - p0);
+        let ng = e1.cross(e2);
+        let dist = ng.dot(p0 - reference) / ng.dot(wi);
+        let pdf = pmf / st.solid_angle() as f32;
+        if !is_positive_finite(dist) || !is_positive_finite(pdf) {
+            return None;
+        }
+        let p = reference + wi * dist;
+        let q = p - p0;
+        let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let (q1, q2) = (q.dot(e1), q.dot(e2));
+        let det = d11 * d22 - d12 * d12;
+        let b = Vec2::new((q1 * d22 - q2 * d12) / det, (q2 * d11 - q1 * d12) / det).clamp(Vec2::ZERO, Vec2::ONE);
+        Some(DirectionSample { p, n: self.face_normal(prim), uv: self.uv_at(prim, b), wi, dist, pdf, prim })
+    }
+
+    /// Density per solid angle of [`Mesh::sample_direction`] for the point `p` (normal `n`) of
+    /// triangle `prim`.
+    pub fn pdf_direction(&self, reference: Vec3, p: Vec3, n: Vec3, prim: u32) -> f32 {
+        if self.cdf.is_empty() || prim as usize >= self.indices.len() {
+            return 0.0;
+        }
+        match self.spherical(reference, prim) {
+            Some(st) => {
+                let lo = if prim == 0 { 0.0 } else { self.cdf[prim as usize - 1] };
+                (self.cdf[prim as usize] - lo) / st.solid_angle() as f32
+            }
+            None => area_to_solid_angle(1.0 / self.area, reference, p, n),
+        }
     }
 }
 

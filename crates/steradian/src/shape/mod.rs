@@ -73,6 +73,26 @@ pub struct DirectionSample {
     pub dist: f32,
     /// Density per unit solid angle seen from the reference point, 1/sr.
     pub pdf: f32,
+    /// Primitive (triangle) the point lies on; 0 for analytic shapes.
+    pub prim: u32,
+}
+
+/// A point on a shape's surface, as density queries need it: where it is, its geometric
+/// normal, and the primitive it lies on (the density of solid-angle sampling depends on the
+/// triangle).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    /// Position, m.
+    pub p: Vec3,
+    /// Geometric normal (the shape's own orientation), unit.
+    pub n: Vec3,
+    /// Primitive index inside the shape.
+    pub prim: u32,
+}
+
+impl SurfacePoint {
+    /// Stands for "at infinity" where an environment emitter is hit (its density ignores it).
+    pub const AT_INFINITY: SurfacePoint = SurfacePoint { p: Vec3::ZERO, n: Vec3::ZERO, prim: 0 };
 }
 
 /// Why a shape could not be built. The message only; the scene loader adds file and line.
@@ -167,17 +187,20 @@ impl Shape {
         match self {
             Shape::Sphere(s) => s.sample_direction(reference, u),
             Shape::Rectangle(s) => s.sample_direction(reference, u),
-            _ => direction_from_position(reference, &self.sample_position(u)),
+            Shape::Mesh(s) => s.sample_direction(reference, u),
+            Shape::Disk(_) | Shape::Cylinder(_) => direction_from_position(reference, &self.sample_position(u), 0),
         }
     }
 
     /// The density per solid angle (1/sr) that [`Shape::sample_direction`] gives for the surface
-    /// point `p` with geometric normal `n`, seen from `reference`.
-    pub fn pdf_direction(&self, reference: Vec3, p: Vec3, n: Vec3) -> f32 {
+    /// point `q`, seen from `reference`.
+    pub fn pdf_direction(&self, reference: Vec3, q: &SurfacePoint) -> f32 {
+        let (p, n) = (q.p, q.n);
         match self {
             Shape::Sphere(s) => s.pdf_direction(reference, p, n),
             Shape::Rectangle(s) => s.pdf_direction(reference, p, n),
-            _ => {
+            Shape::Mesh(s) => s.pdf_direction(reference, p, n, q.prim),
+            Shape::Disk(_) | Shape::Cylinder(_) => {
                 let area = self.surface_area();
                 if area > 0.0 {
                     area_to_solid_angle(1.0 / area, reference, p, n)
@@ -210,8 +233,8 @@ pub(crate) fn area_to_solid_angle(pdf_area: f32, reference: Vec3, p: Vec3, n: Ve
     }
 }
 
-/// Turns an area sample into a direction sample seen from `reference`.
-pub(crate) fn direction_from_position(reference: Vec3, ps: &PositionSample) -> Option<DirectionSample> {
+/// Turns an area sample (on primitive `prim`) into a direction sample seen from `reference`.
+pub(crate) fn direction_from_position(reference: Vec3, ps: &PositionSample, prim: u32) -> Option<DirectionSample> {
     let d = ps.p - reference;
     let dist = d.length();
     if !is_positive_finite(dist) {
@@ -221,7 +244,7 @@ pub(crate) fn direction_from_position(reference: Vec3, ps: &PositionSample) -> O
     if !is_positive_finite(pdf) {
         return None;
     }
-    Some(DirectionSample { p: ps.p, n: ps.n, uv: ps.uv, wi: d / dist, dist, pdf })
+    Some(DirectionSample { p: ps.p, n: ps.n, uv: ps.uv, wi: d / dist, dist, pdf, prim })
 }
 
 /// `x > 0`, false for NaN (written as a function so that NaN-rejecting tests read clearly).

@@ -102,7 +102,7 @@ impl Rectangle {
     /// A point seen from `reference`, uniformly in solid angle where possible.
     pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
         let Some(sr) = self.spherical(reference) else {
-            return direction_from_position(reference, &self.sample_position(u));
+            return direction_from_position(reference, &self.sample_position(u), 0);
         };
         let (p, uv) = sr.sample_with_uv(u);
         let d = p - reference;
@@ -111,7 +111,7 @@ impl Rectangle {
         if !is_positive_finite(dist) || !is_positive_finite(pdf) {
             return None;
         }
-        Some(DirectionSample { p, n: self.n, uv, wi: d / dist, dist, pdf })
+        Some(DirectionSample { p, n: self.n, uv, wi: d / dist, dist, pdf, prim: 0 })
     }
 
     /// Density per solid angle of [`Rectangle::sample_direction`] for the point `p`.

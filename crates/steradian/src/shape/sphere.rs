@@ -163,7 +163,7 @@ impl Sphere {
 
     pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
         let Some((cos_max, one_minus, dc)) = self.cone(reference) else {
-            return super::direction_from_position(reference, &self.sample_position(u));
+            return super::direction_from_position(reference, &self.sample_position(u), 0);
         };
         let axis = (self.center - reference) / dc;
         let local = warp::square_to_uniform_cone(u, cos_max);
@@ -184,7 +184,7 @@ impl Sphere {
             return None;
         }
         let n = self.normal_at(p);
-        Some(DirectionSample { p, n, uv: self.uv_at(p), wi, dist, pdf })
+        Some(DirectionSample { p, n, uv: self.uv_at(p), wi, dist, pdf, prim: 0 })
     }
 
     pub fn pdf_direction(&self, reference: Vec3, p: Vec3, n: Vec3) -> f32 {

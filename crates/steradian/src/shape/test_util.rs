@@ -57,7 +57,7 @@ pub fn check_sampling(shape: &Shape, on_surface: impl Fn(Vec3) -> bool, referenc
         let scale = 1.0 + ds.p.abs().max_element().max(reference.abs().max_element());
         assert!(close(reference + ds.wi * ds.dist, ds.p, 2e-4 * scale), "{} vs {}", reference + ds.wi * ds.dist, ds.p);
         assert!(on_surface(ds.p), "direction-sampled point {} is not on the surface", ds.p);
-        let pdf = shape.pdf_direction(reference, ds.p, ds.n);
+        let pdf = shape.pdf_direction(reference, &super::SurfacePoint { p: ds.p, n: ds.n, prim: ds.prim });
         assert!((pdf - ds.pdf).abs() <= 1e-3 * ds.pdf, "pdf {} vs pdf_direction {}", ds.pdf, pdf);
         // brute-force visibility of the sampled point (skip grazing directions)
         if ds.wi.dot(ds.n).abs() > 1e-2 {

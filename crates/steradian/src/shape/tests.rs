@@ -352,24 +352,32 @@ fn mesh_validation_and_degenerate_triangles() {
     let z = Shape::Mesh(Mesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::X], None, None, vec![[0, 1, 2]], &id, false, false).unwrap());
     assert_eq!(z.surface_area(), 0.0);
     assert!(z.sample_direction(Vec3::Z, Vec2::splat(0.5)).is_none());
-    assert_eq!(z.pdf_direction(Vec3::Z, Vec3::ZERO, Vec3::Z), 0.0);
+    assert_eq!(z.pdf_direction(Vec3::Z, &super::SurfacePoint { p: Vec3::ZERO, n: Vec3::Z, prim: 0 }), 0.0);
 }
 
 #[test]
 fn mesh_sampling() {
     // one triangle: Ω from the Van Oosterom–Strackee formula
     let m = Shape::Mesh(triangle_mesh(&Transform::IDENTITY));
-    let refp = Vec3::new(0.3, 0.4, 1.2);
-    let [a, b, c] = [Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0)].map(|v| (v - refp).as_dvec3());
-    let (la, lb, lc) = (a.length(), b.length(), c.length());
-    let num = a.dot(b.cross(c)).abs();
-    let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
-    let mut omega = 2.0 * num.atan2(den);
-    if omega < 0.0 {
-        omega += 2.0 * PI64;
-    }
+    let solid_angle = |refp: Vec3| {
+        let [a, b, c] = [Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0)].map(|v| (v - refp).as_dvec3());
+        let (la, lb, lc) = (a.length(), b.length(), c.length());
+        let num = a.dot(b.cross(c)).abs();
+        let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
+        let omega = 2.0 * num.atan2(den);
+        if omega < 0.0 {
+            omega + 2.0 * PI64
+        } else {
+            omega
+        }
+    };
     let on = |p: Vec3| p.z.abs() < 1e-6 && p.x >= -1e-6 && p.y >= -1e-6 && p.x + p.y <= 2.0 + 1e-5;
-    check_sampling(&m, on, refp, omega, true, 9);
+    // near (spherical-triangle sampling, density 1/Ω: the estimate of Ω has no variance) and
+    // far (Ω < 3·10⁻⁴ sr: area sampling)
+    for (k, refp) in [Vec3::new(0.3, 0.4, 1.2), Vec3::new(-0.5, 0.2, -0.8), Vec3::new(40.0, 70.0, 150.0)].into_iter().enumerate() {
+        check_sampling(&m, on, refp, solid_angle(refp), true, 9 + 20 * k as u64);
+    }
+    assert!(solid_angle(Vec3::new(40.0, 70.0, 150.0)) < 3e-4);
     // a cube from inside: 4π; uneven triangle sizes exercise the area CDF
     let t = sc(Vec3::new(1.0, 2.0, 0.5)).then(&Transform::rotate(Vec3::new(1.0, 1.0, 0.0), 30.0).unwrap());
     let c = Shape::Mesh(cube(&t, false));

@@ -47,7 +47,7 @@ impl SphericalTriangle {
         // small triangles where the angle-sum formula α + β + γ − π cancels
         let triple = a.dot(b.cross(c)).abs();
         let solid_angle = 2.0 * triple.atan2(1.0 + a.dot(b) + b.dot(c) + c.dot(a));
-        if !(solid_angle > 0.0) {
+        if solid_angle.is_nan() || solid_angle <= 0.0 {
             return None;
         }
         // the angle at A between the great circles AB and AC
@@ -94,7 +94,7 @@ mod tests {
         let (p0, e1, e2) = (p0.as_dvec3(), (p1 - p0).as_dvec3(), (p2 - p0).as_dvec3());
         let n = e1.cross(e2);
         let t = n.dot(p0 - o) / n.dot(w);
-        if !(t > 0.0) {
+        if t.is_nan() || t <= 0.0 {
             return None;
         }
         let q = o + t * w - p0;

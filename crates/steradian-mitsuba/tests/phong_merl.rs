@@ -115,9 +115,14 @@ fn sphere_scene(bsdf_xml: &str) -> String {
 /// combined standard error and ε the largest relative error of the table's interpolation
 /// found over 20 000 random direction pairs (0 for a constant table).
 fn compare_table_with_analytic(test: &str, analytic: &Bsdf, analytic_xml: &str) {
-    let dir = temp_dir(test);
     let table = MerlTable::tabulate(|wo, wi| analytic.eval(&sp(), wo, wi));
-    std::fs::write(dir.join("t.binary"), table.to_bytes(0.0)).unwrap();
+    compare_file_with_analytic(test, &table.to_bytes(0.0), analytic, analytic_xml);
+}
+
+/// [`compare_table_with_analytic`] for the MERL file `merl_bytes`.
+fn compare_file_with_analytic(test: &str, merl_bytes: &[u8], analytic: &Bsdf, analytic_xml: &str) {
+    let dir = temp_dir(test);
+    std::fs::write(dir.join("t.binary"), merl_bytes).unwrap();
     std::fs::write(dir.join("merl.xml"), sphere_scene(r#"<bsdf type="merl"><string name="filename" value="t.binary"/></bsdf>"#)).unwrap();
     std::fs::write(dir.join("analytic.xml"), sphere_scene(analytic_xml)).unwrap();
     let spp = 64;
@@ -189,6 +194,17 @@ fn phong_table_renders_like_phong() {
         "phong",
         &analytic,
         r#"<bsdf type="phong"><rgb name="diffuse_reflectance" value="0.4, 0.3, 0.1"/><rgb name="specular_reflectance" value="0.4, 0.5, 0.6"/><float name="exponent" value="15"/></bsdf>"#,
+    );
+}
+
+#[test]
+fn shipped_asset_renders_like_roughplastic() {
+    let bytes = std::fs::read(repo_file(ASSET)).unwrap();
+    compare_file_with_analytic(
+        "asset",
+        &bytes,
+        &asset_bsdf(),
+        r#"<bsdf type="roughplastic"><string name="distribution" value="ggx"/><float name="alpha" value="0.15"/><float name="int_ior" value="1.5"/><float name="ext_ior" value="1"/><rgb name="diffuse_reflectance" value="0.55, 0.12, 0.06"/></bsdf>"#,
     );
 }
 

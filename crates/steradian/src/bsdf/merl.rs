@@ -506,7 +506,7 @@ mod tests {
             Spectrum::ONE.into(),
             super::super::InternalScattering::Linear,
         ));
-        let tables = [(lambert, 8), (phong(), 8), (plastic, 48)];
+        let tables = [(lambert, 8), (phong(), 24), (plastic, 48)];
         let angles = [0.0, 30.0, 60.0, 85.0];
         let tests = (tables.len() * angles.len()) as f64;
         let mut min_p = 1f64;

@@ -1,5 +1,6 @@
 //! BSDF plugins: `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`,
-//! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`. Parameters and defaults are Mitsuba 3's (see each
+//! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, and steradian's own
+//! `phong` and `merl`. Parameters and defaults are Mitsuba 3's (see each
 //! plugin's documentation in `steradian::bsdf`); only constant spectra and floats are
 //! accepted (no textures yet).
 
@@ -11,9 +12,10 @@ use steradian::bsdf::{
     MicrofacetKind, Plastic, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric,
     TwoSided,
 };
+use steradian::bsdf::{Merl, MerlTable, Phong};
 use steradian::Spectrum;
 
-use super::{at, unknown_type};
+use super::{at, at_property, unknown_type, Builder};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
 use crate::xml::{ObjectTag, PluginNode};
@@ -28,6 +30,8 @@ const KNOWN: &[&str] = &[
     "roughdielectric",
     "plastic",
     "roughplastic",
+    "phong",
+    "merl",
 ];
 
 /// An IOR given as a number or as a name from Mitsuba's table (`int_ior`, `ext_ior`).
@@ -131,7 +135,7 @@ fn microfacet(node: &PluginNode) -> Result<MicrofacetDistribution, LoadError> {
 }
 
 /// Builds a BSDF node (not cached: use `Builder::bsdf_index` for scene BSDFs).
-pub(crate) fn build(node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
+pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
     let p = &node.props;
     let bsdf = match node.plugin_type.as_str() {
         "diffuse" => {
@@ -144,7 +148,7 @@ pub(crate) fn build(node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
             let children = node.children_of(ObjectTag::Bsdf);
             let built: Vec<Bsdf> = children
                 .iter()
-                .map(|c| build(&c.node))
+                .map(|c| build(b, &c.node))
                 .collect::<Result<_, _>>()?;
             if built.iter().any(|b| matches!(b, Bsdf::TwoSided(_))) {
                 return Err(LoadError::at(
@@ -226,6 +230,25 @@ pub(crate) fn build(node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
                 }
                 Bsdf::RoughPlastic(RoughPlastic::new(d, eta, diffuse, specular, internal))
             }
+        }
+        "phong" => {
+            let diffuse = spectrum(node, "diffuse_reflectance", 0.5)?.into();
+            let specular = spectrum(node, "specular_reflectance", 0.2)?.into();
+            let exponent = p.get_float("exponent")?.unwrap_or(30.0);
+            Phong::new(diffuse, specular, exponent)
+                .map(Bsdf::Phong)
+                .map_err(at_property(node, &["exponent", "diffuse_reflectance", "specular_reflectance"]))?
+        }
+        "merl" => {
+            let file = p
+                .get_string("filename")?
+                .ok_or_else(|| at(node)("missing 'filename' (the MERL .binary file)".into()))?;
+            let path = b.resolve_path(node, &file);
+            // errors reading the file are placed at its `filename`
+            let table = MerlTable::read(&path).map_err(|m| {
+                LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
+            })?;
+            Bsdf::Merl(Merl::new(table))
         }
         _ => return Err(unknown_type(node, KNOWN)),
     };

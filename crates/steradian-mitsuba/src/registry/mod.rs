@@ -60,7 +60,7 @@ impl Builder {
         if let Some(&i) = self.bsdf_cache.get(&key) {
             return Ok(i);
         }
-        let bsdf = bsdfs::build(node)?;
+        let bsdf = bsdfs::build(self, node)?;
         let i = self.add_bsdf(bsdf);
         self.bsdf_cache.insert(key, i);
         Ok(i)

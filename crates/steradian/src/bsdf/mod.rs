@@ -9,9 +9,11 @@
 mod conductor;
 mod dielectric;
 mod diffuse;
+mod merl;
 pub mod fresnel;
 pub mod ior;
 pub mod microfacet;
+mod phong;
 mod plastic;
 mod roughconductor;
 mod roughdielectric;
@@ -22,7 +24,9 @@ mod twosided;
 pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use merl::{Merl, MerlTable};
 pub use microfacet::{MicrofacetDistribution, MicrofacetKind};
+pub use phong::Phong;
 pub use plastic::{InternalScattering, Plastic};
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
@@ -79,6 +83,8 @@ pub enum Bsdf {
     RoughDielectric(RoughDielectric),
     Plastic(Plastic),
     RoughPlastic(RoughPlastic),
+    Phong(Phong),
+    Merl(Merl),
 }
 
 /// Dispatches a method call to the variant's implementation.
@@ -94,6 +100,8 @@ macro_rules! dispatch {
             Bsdf::RoughDielectric($b) => $e,
             Bsdf::Plastic($b) => $e,
             Bsdf::RoughPlastic($b) => $e,
+            Bsdf::Phong($b) => $e,
+            Bsdf::Merl($b) => $e,
         }
     };
 }
@@ -122,6 +130,7 @@ impl Bsdf {
     pub fn has_smooth_lobe(&self) -> bool {
         match self {
             Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::RoughDielectric(_) | Bsdf::Plastic(_) | Bsdf::RoughPlastic(_) => true,
+            Bsdf::Phong(_) | Bsdf::Merl(_) => true,
             Bsdf::Conductor(_) | Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided(b) => b.has_smooth_lobe(),
         }

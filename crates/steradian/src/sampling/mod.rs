@@ -2,6 +2,7 @@
 //! integrated over.
 
 mod pcg32;
+pub mod piecewise_constant;
 mod sampler;
 pub mod spherical_rectangle;
 pub mod spherical_triangle;

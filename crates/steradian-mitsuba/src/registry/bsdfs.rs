@@ -1,19 +1,21 @@
 //! BSDF plugins: `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`,
-//! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`. Parameters and defaults are Mitsuba 3's (see each
-//! plugin's documentation in `steradian::bsdf`); only constant spectra and floats are
-//! accepted (no textures yet).
+//! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `mask`, `blendbsdf`,
+//! `bumpmap`, `normalmap`. Parameters and defaults are Mitsuba 3's (see each plugin's
+//! documentation in `steradian::bsdf`). Reflectances and transmittances, `mask`'s `opacity`
+//! and `blendbsdf`'s `weight` take a value or a texture; IORs and roughness are values.
 
 use std::sync::Arc;
 
 use steradian::bsdf::ior::{conductor_preset, lookup_ior};
 use steradian::bsdf::{
-    Bsdf, Conductor, Dielectric, Diffuse, InternalScattering, MicrofacetDistribution,
+    BlendBsdf, Bsdf, BumpMap, Conductor, Mask, NormalMap, PerturbOptions, Dielectric, Diffuse, InternalScattering, MicrofacetDistribution,
     MicrofacetKind, Plastic, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric,
     TwoSided,
 };
 use steradian::Spectrum;
 
-use super::{at, unknown_type};
+use super::textures::{self, texture_param};
+use super::{at, unknown_type, Builder};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
 use crate::xml::{ObjectTag, PluginNode};
@@ -28,7 +30,34 @@ const KNOWN: &[&str] = &[
     "roughdielectric",
     "plastic",
     "roughplastic",
+    "mask",
+    "blendbsdf",
+    "bumpmap",
+    "normalmap",
 ];
+
+/// The nested BSDFs of `node` (named or not), built, in document order.
+fn nested_bsdfs(b: &Builder, node: &PluginNode) -> Result<Vec<Bsdf>, LoadError> {
+    node.children_of(ObjectTag::Bsdf).iter().map(|c| build(b, &c.node)).collect()
+}
+
+/// `flip_invalid_normals` and `use_shadowing_function` of `bumpmap` and `normalmap`.
+fn perturb_options(node: &PluginNode) -> Result<PerturbOptions, LoadError> {
+    let d = PerturbOptions::default();
+    Ok(PerturbOptions {
+        flip_invalid_normals: node.props.get_bool("flip_invalid_normals")?.unwrap_or(d.flip_invalid_normals),
+        use_shadowing_function: node.props.get_bool("use_shadowing_function")?.unwrap_or(d.use_shadowing_function),
+    })
+}
+
+/// Exactly one nested BSDF.
+fn one_nested(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let mut v = nested_bsdfs(b, node)?;
+    if v.len() != 1 {
+        return Err(at(node)(format!("expects exactly one nested BSDF, got {}", v.len())));
+    }
+    Ok(v.remove(0))
+}
 
 /// An IOR given as a number or as a name from Mitsuba's table (`int_ior`, `ext_ior`).
 fn ior(node: &PluginNode, name: &str, default: &str) -> Result<f32, LoadError> {
@@ -131,20 +160,17 @@ fn microfacet(node: &PluginNode) -> Result<MicrofacetDistribution, LoadError> {
 }
 
 /// Builds a BSDF node (not cached: use `Builder::bsdf_index` for scene BSDFs).
-pub(crate) fn build(node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
+pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
     let p = &node.props;
     let bsdf = match node.plugin_type.as_str() {
         "diffuse" => {
-            let reflectance = p
-                .get_spectrum("reflectance")?
-                .unwrap_or(Spectrum::splat(0.5));
-            Bsdf::Diffuse(Diffuse::new(reflectance.into()))
+            Bsdf::Diffuse(Diffuse::new(texture_param(b, node, "reflectance", Some(0.5))?))
         }
         "twosided" => {
             let children = node.children_of(ObjectTag::Bsdf);
             let built: Vec<Bsdf> = children
                 .iter()
-                .map(|c| build(&c.node))
+                .map(|c| build(b, &c.node))
                 .collect::<Result<_, _>>()?;
             if built.iter().any(|b| matches!(b, Bsdf::TwoSided(_))) {
                 return Err(LoadError::at(
@@ -170,7 +196,7 @@ pub(crate) fn build(node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
             Bsdf::Conductor(Conductor::new(
                 eta,
                 k,
-                spectrum(node, "specular_reflectance", 1.0)?.into(),
+                texture_param(b, node, "specular_reflectance", Some(1.0))?,
             ))
         }
         "roughconductor" => {
@@ -180,13 +206,13 @@ pub(crate) fn build(node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
                 d,
                 eta,
                 k,
-                spectrum(node, "specular_reflectance", 1.0)?.into(),
+                texture_param(b, node, "specular_reflectance", Some(1.0))?,
             ))
         }
         "dielectric" | "thindielectric" | "roughdielectric" => {
             let eta = relative_ior(node)?;
-            let r = spectrum(node, "specular_reflectance", 1.0)?.into();
-            let t = spectrum(node, "specular_transmittance", 1.0)?.into();
+            let r = texture_param(b, node, "specular_reflectance", Some(1.0))?;
+            let t = texture_param(b, node, "specular_transmittance", Some(1.0))?;
             match node.plugin_type.as_str() {
                 "dielectric" => Bsdf::Dielectric(Dielectric::new(eta, r, t)),
                 "thindielectric" => Bsdf::ThinDielectric(ThinDielectric::new(eta, r, t)),
@@ -203,8 +229,8 @@ pub(crate) fn build(node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
         "plastic" | "roughplastic" => {
             // Mitsuba: plastic coatings default to polypropylene in air.
             let eta = ior(node, "int_ior", "polypropylene")? / ior(node, "ext_ior", "air")?;
-            let diffuse = spectrum(node, "diffuse_reflectance", 0.5)?.into();
-            let specular = spectrum(node, "specular_reflectance", 1.0)?.into();
+            let diffuse = texture_param(b, node, "diffuse_reflectance", Some(0.5))?;
+            let specular = texture_param(b, node, "specular_reflectance", Some(1.0))?;
             let internal = if p.get_bool("nonlinear")?.unwrap_or(false) {
                 InternalScattering::Nonlinear
             } else {
@@ -226,6 +252,34 @@ pub(crate) fn build(node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
                 }
                 Bsdf::RoughPlastic(RoughPlastic::new(d, eta, diffuse, specular, internal))
             }
+        }
+        "mask" => {
+            let opacity = texture_param(b, node, "opacity", Some(0.5))?;
+            Bsdf::Mask(Mask::new(opacity, one_nested(b, node)?))
+        }
+        "blendbsdf" => {
+            let weight = texture_param(b, node, "weight", None)?;
+            match <[Bsdf; 2]>::try_from(nested_bsdfs(b, node)?) {
+                Ok([b0, b1]) => Bsdf::BlendBsdf(BlendBsdf::new(weight, b0, b1)),
+                Err(v) => return Err(at(node)(format!("expects two nested BSDFs, got {}", v.len()))),
+            }
+        }
+        "bumpmap" => {
+            let textures = node.children_of(ObjectTag::Texture);
+            if textures.len() != 1 {
+                return Err(at(node)(format!("expects exactly one nested texture (the height), got {}", textures.len())));
+            }
+            let height = textures::build(b, &textures[0].node)?;
+            let scale = p.get_float("scale")?.unwrap_or(1.0);
+            if !scale.is_finite() {
+                return Err(at(node)(format!("scale must be finite, got {scale}")));
+            }
+            let nested = one_nested(b, node)?;
+            Bsdf::BumpMap(BumpMap::new(height, scale, nested, perturb_options(node)?).map_err(|m| LoadError::at(textures[0].pos(), format!("{}: {m}", node.desc())))?)
+        }
+        "normalmap" => {
+            let normals = texture_param(b, node, "normalmap", None)?;
+            Bsdf::NormalMap(NormalMap::new(normals, one_nested(b, node)?, perturb_options(node)?))
         }
         _ => return Err(unknown_type(node, KNOWN)),
     };

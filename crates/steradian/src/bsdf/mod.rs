@@ -32,6 +32,7 @@ pub use diffuse::Diffuse;
 pub use mask::Mask;
 pub use microfacet::{MicrofacetDistribution, MicrofacetKind};
 pub use normalmap::NormalMap;
+pub use perturbed::PerturbOptions;
 pub use plastic::{InternalScattering, Plastic};
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;

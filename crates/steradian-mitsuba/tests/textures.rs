@@ -1,0 +1,201 @@
+//! Loading textures and the BSDF adapters (`mask`, `blendbsdf`, `bumpmap`, `normalmap`) from
+//! scene files: where Mitsuba accepts a texture, what the loaded values are, and the errors
+//! (with file, line and column) for missing or corrupt images and mistyped parameters.
+
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use steradian::bsdf::Bsdf;
+use steradian::emitter::Emitter;
+use steradian::texture::{FilterType, Texture, WrapMode};
+use steradian::{Spectrum, Vec2};
+use steradian_mitsuba::{load_file, LoadError};
+
+fn assets() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference/textures")
+}
+
+/// Writes `body` (scene-level elements after an integrator and a sensor, from line 4) to
+/// `name` in a fresh folder (tests run in parallel) next to copies of the reference assets,
+/// and loads it.
+fn load(name: &str, body: &str) -> Result<steradian::scene::Scene, LoadError> {
+    static CALLS: AtomicUsize = AtomicUsize::new(0);
+    let call = CALLS.fetch_add(1, Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("steradian-textures-{}-{call}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    for f in ["wall.png", "leaf.jpg", "leaf_mask.png", "bumps.png", "normals.png", "light.exr"] {
+        std::fs::copy(assets().join(f), dir.join(f)).unwrap();
+    }
+    std::fs::write(dir.join("corrupt.png"), b"\x89PNG\r\n\x1a\n not really").unwrap();
+    let xml = format!("<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\"/>\n{body}\n</scene>");
+    let path = dir.join(name);
+    std::fs::write(&path, xml).unwrap();
+    load_file(&path, &[])
+}
+
+#[track_caller]
+fn err(name: &str, body: &str, line: u32, col: u32, needles: &[&str]) {
+    let e = match load(name, body) {
+        Ok(_) => panic!("expected an error for {body}"),
+        Err(e) => e,
+    };
+    let pos = e.pos.as_ref().unwrap_or_else(|| panic!("no position in: {e}"));
+    assert!(pos.file.ends_with(name), "wrong file in: {e}");
+    assert_eq!((pos.line, pos.col), (line, col), "wrong position in: {e}");
+    for n in needles {
+        assert!(e.to_string().contains(n), "{e:?} does not contain {n:?}");
+    }
+}
+
+fn bsdf_of(body: &str) -> Bsdf {
+    let scene = load("ok.xml", &format!("<shape type=\"rectangle\">{body}</shape>")).unwrap_or_else(|e| panic!("{e}"));
+    scene.bsdfs.last().unwrap().clone()
+}
+
+#[test]
+fn bitmap_parameters_and_values() {
+    let b = bsdf_of(
+        r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="wall.png"/>
+           <string name="filter_type" value="nearest"/><string name="wrap_mode" value="clamp"/>
+           <transform name="to_uv"><scale x="2" y="3"/></transform></texture></bsdf>"#,
+    );
+    let Bsdf::Diffuse(d) = b else { panic!("{b:?}") };
+    let Texture::Bitmap(t) = &d.reflectance else { panic!() };
+    assert_eq!((t.filter, t.wrap, t.resolution()), (FilterType::Nearest, WrapMode::Clamp, (64, 64)));
+    assert_eq!(t.to_uv.apply(Vec2::new(0.1, 0.1)), Vec2::new(0.2, 0.3));
+    // Mitsuba 3.9.1 (scalar_rgb, bilinear, repeat) at uv (0.3, 0.7) of wall.png
+    let b = bsdf_of(r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="wall.png"/></texture></bsdf>"#);
+    let Bsdf::Diffuse(d) = b else { panic!() };
+    let v = d.reflectance.eval(Vec2::new(0.3, 0.7));
+    let mitsuba = Spectrum::new(MITSUBA_WALL[0], MITSUBA_WALL[1], MITSUBA_WALL[2]);
+    assert!((v - mitsuba).abs().max_element() < 1e-3, "{v} vs {mitsuba}");
+    // JPEG: decoders may differ by one code value (≈ 0.4 % after sRGB decoding)
+    let b = bsdf_of(r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/><string name="filter_type" value="nearest"/></texture></bsdf>"#);
+    let Bsdf::Diffuse(d) = b else { panic!() };
+    let v = d.reflectance.eval(Vec2::new(0.5, 0.5));
+    let mitsuba = Spectrum::new(MITSUBA_LEAF[0], MITSUBA_LEAF[1], MITSUBA_LEAF[2]);
+    assert!((v - mitsuba).abs().max_element() < 0.01 * mitsuba.max_element(), "{v} vs {mitsuba}");
+}
+
+/// `mi.load_dict({'type': 'bitmap', 'filename': 'wall.png'}).eval(si)` at uv (0.3, 0.7).
+const MITSUBA_WALL: [f32; 3] = [0.739077, 0.29277, 0.0262082];
+/// The same for leaf.jpg, nearest, at uv (0.5, 0.5).
+const MITSUBA_LEAF: [f32; 3] = [0.266356, 0.672443, 0.0822828];
+
+#[test]
+fn textures_wherever_mitsuba_takes_them() {
+    let tex = r#"<texture type="checkerboard" name="NAME"><rgb name="color0" value="0.1, 0.2, 0.3"/></texture>"#;
+    for (bsdf, names) in [
+        ("diffuse", &["reflectance"][..]),
+        ("plastic", &["diffuse_reflectance", "specular_reflectance"][..]),
+        ("roughplastic", &["diffuse_reflectance", "specular_reflectance"][..]),
+        ("conductor", &["specular_reflectance"][..]),
+        ("roughconductor", &["specular_reflectance"][..]),
+        ("dielectric", &["specular_reflectance", "specular_transmittance"][..]),
+        ("thindielectric", &["specular_reflectance", "specular_transmittance"][..]),
+        ("roughdielectric", &["specular_reflectance", "specular_transmittance"][..]),
+    ] {
+        let body: String = names.iter().map(|n| tex.replace("NAME", n)).collect();
+        bsdf_of(&format!("<bsdf type=\"{bsdf}\">{body}</bsdf>"));
+    }
+    // area light radiance, from a scene-level texture by reference
+    let scene = load(
+        "ok.xml",
+        r#"<texture type="bitmap" id="sky"><string name="filename" value="light.exr"/><string name="filter_type" value="nearest"/></texture>
+           <shape type="rectangle"><emitter type="area"><ref name="radiance" id="sky"/></emitter></shape>"#,
+    )
+    .unwrap();
+    let Emitter::Area(a) = &scene.emitters[0] else { panic!() };
+    // light.exr texel (0, 0) = (16, 15, 13)
+    assert_eq!(a.radiance.eval(Vec2::new(0.1, 0.1)), Spectrum::new(16.0, 15.0, 13.0));
+}
+
+#[test]
+fn adapters_load_with_mitsuba_defaults() {
+    let Bsdf::Mask(m) = bsdf_of(r#"<bsdf type="mask"><bsdf type="diffuse"/></bsdf>"#) else { panic!() };
+    assert_eq!(m.opacity, Texture::Constant(Spectrum::splat(0.5)));
+    let Bsdf::Mask(m) = bsdf_of(r#"<bsdf type="mask"><texture type="bitmap" name="opacity"><string name="filename" value="leaf_mask.png"/></texture><bsdf type="diffuse"/></bsdf>"#) else { panic!() };
+    assert_eq!((m.opacity.eval_1(Vec2::new(0.5, 0.5)), m.opacity.eval_1(Vec2::new(0.01, 0.5))), (1.0, 0.0));
+    let Bsdf::BlendBsdf(b) = bsdf_of(r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>"#) else { panic!() };
+    assert!(matches!((&*b.bsdf0, &*b.bsdf1), (Bsdf::Diffuse(_), Bsdf::Conductor(_))));
+    assert_eq!(b.weight.eval_1(Vec2::ZERO), 0.3);
+    let Bsdf::BumpMap(b) = bsdf_of(r#"<bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="bumps.png"/><boolean name="raw" value="true"/></texture><bsdf type="roughplastic"/></bsdf>"#) else { panic!() };
+    assert_eq!(b.scale, 1.0);
+    let Bsdf::NormalMap(n) = bsdf_of(r#"<bsdf type="normalmap"><texture type="bitmap" name="normalmap"><string name="filename" value="normals.png"/><boolean name="raw" value="true"/></texture><bsdf type="diffuse"/></bsdf>"#) else { panic!() };
+    assert!(matches!(n.normals, Texture::Bitmap(_)));
+}
+
+#[test]
+fn missing_and_corrupt_images() {
+    let body = "<shape type=\"rectangle\">\n<bsdf type=\"diffuse\">\n<texture type=\"bitmap\" name=\"reflectance\">\n  <string name=\"filename\" value=\"nowhere.png\"/>\n</texture></bsdf></shape>";
+    err("missing.xml", body, 7, 3, &["missing.xml:7:3", "nowhere.png", "<texture type=\"bitmap\">"]);
+    err("corrupt.xml", &body.replace("nowhere.png", "corrupt.png"), 7, 3, &["corrupt.png", "cannot read image"]);
+    err("text.xml", &body.replace("nowhere.png", "ok.xml"), 7, 3, &["ok.xml", "not a PNG, JPEG or OpenEXR"]);
+}
+
+#[test]
+fn bad_bitmap_options() {
+    let tex = |extra: &str| format!("<shape type=\"rectangle\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"wall.png\"/>\n{extra}\n</texture></bsdf></shape>");
+    err("wrap.xml", &tex("  <string name=\"wrap_mode\" value=\"wrap\"/>"), 5, 3, &["invalid wrap_mode \"wrap\"", "\"repeat\", \"mirror\", \"clamp\""]);
+    err("filter.xml", &tex("  <string name=\"filter_type\" value=\"cubic\"/>"), 5, 3, &["invalid filter_type \"cubic\"", "\"bilinear\", \"nearest\""]);
+    err("raw.xml", &tex("  <string name=\"raw\" value=\"yes\"/>"), 5, 3, &["'raw'", "must be boolean"]);
+    err("unused.xml", &tex("  <float name=\"gamma\" value=\"2.2\"/>"), 5, 3, &["unreferenced property 'gamma'"]);
+    err("nofile.xml", "<texture type=\"bitmap\" id=\"t\"/>", 4, 1, &["missing parameter 'filename'"]);
+    err("type.xml", "<texture type=\"noise\" id=\"t\"/>", 4, 1, &["unknown texture plugin type 'noise'", "bitmap, checkerboard"]);
+}
+
+#[test]
+fn mistyped_parameters() {
+    // a texture where Mitsuba takes only a number
+    err(
+        "ior.xml",
+        "<shape type=\"sphere\"><bsdf type=\"dielectric\">\n  <texture type=\"checkerboard\" name=\"int_ior\"/>\n</bsdf></shape>",
+        5,
+        3,
+        &["unreferenced object <texture type=\"checkerboard\">"],
+    );
+    // a BSDF where a texture belongs
+    err("refl.xml", "<shape type=\"sphere\"><bsdf type=\"diffuse\">\n  <bsdf type=\"diffuse\" name=\"reflectance\"/>\n</bsdf></shape>", 5, 3, &["'reflectance' must be a texture or a value"]);
+    err("str.xml", "<shape type=\"sphere\"><bsdf type=\"mask\">\n  <string name=\"opacity\" value=\"half\"/><bsdf type=\"diffuse\"/>\n</bsdf></shape>", 5, 3, &["'opacity'", "must be rgb, spectrum or float"]);
+    err("blendw.xml", "<shape type=\"sphere\">\n<bsdf type=\"blendbsdf\"><bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/></bsdf></shape>", 5, 1, &["missing parameter 'weight'"]);
+    err("blend1.xml", "<shape type=\"sphere\">\n<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/><bsdf type=\"diffuse\"/></bsdf></shape>", 5, 1, &["two nested BSDFs, got 1"]);
+    err("mask2.xml", "<shape type=\"sphere\">\n<bsdf type=\"mask\"><bsdf type=\"diffuse\"/><bsdf type=\"diffuse\"/></bsdf></shape>", 5, 1, &["exactly one nested BSDF, got 2"]);
+    err(
+        "bumpcheck.xml",
+        "<shape type=\"sphere\"><bsdf type=\"bumpmap\">\n  <texture type=\"checkerboard\"/><bsdf type=\"diffuse\"/>\n</bsdf></shape>",
+        5,
+        3,
+        &["checkerboard has no gradient"],
+    );
+    err("bumpnone.xml", "<shape type=\"sphere\">\n<bsdf type=\"bumpmap\"><bsdf type=\"diffuse\"/></bsdf></shape>", 5, 1, &["exactly one nested texture"]);
+    err("nmap.xml", "<shape type=\"sphere\">\n<bsdf type=\"normalmap\"><bsdf type=\"diffuse\"/></bsdf></shape>", 5, 1, &["missing parameter 'normalmap'"]);
+    err("scale.xml", "<shape type=\"sphere\"><bsdf type=\"bumpmap\"><texture type=\"bitmap\"><string name=\"filename\" value=\"bumps.png\"/></texture>\n  <string name=\"scale\" value=\"2\"/><bsdf type=\"diffuse\"/></bsdf></shape>", 5, 3, &["'scale'", "must be float"]);
+}
+
+#[test]
+fn reference_scene_loads() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/textures.xml");
+    let scene = load_file(&path, &[]).unwrap();
+    let kinds: Vec<&str> = scene
+        .bsdfs
+        .iter()
+        .map(|b| match b {
+            Bsdf::Mask(_) => "mask",
+            Bsdf::BlendBsdf(_) => "blendbsdf",
+            Bsdf::BumpMap(_) => "bumpmap",
+            Bsdf::NormalMap(_) => "normalmap",
+            _ => "other",
+        })
+        .filter(|k| *k != "other")
+        .collect();
+    assert_eq!(kinds, ["bumpmap", "normalmap", "blendbsdf", "mask"]);
+}
+
+#[test]
+fn zz_probe_cube() {
+    let scene = load("probe.xml", r#"<shape type="cube"><transform name="to_world"><scale value="0.5"/><rotate y="1" angle="30"/><translate x="-0.5" y="0.5" z="0.6"/></transform></shape>"#).unwrap();
+    for (o, d) in [([-0.5, 0.6, 5.0], [0.0, 0.0, -1.0]), ([-0.3, 1.5, 0.6], [0.0, -1.0, 0.0]), ([2.0, 0.7, 0.7], [-1.0, 0.0, 0.0]), ([-0.6, 0.3, 5.0], [0.0, 0.0, -1.0])] {
+        let si = scene.intersect(&steradian::geometry::Ray::infinite(steradian::Vec3::from(o), steradian::Vec3::from(d))).unwrap();
+        eprintln!("uv {} dpdu {} dpdv {} n {} s {}", si.uv, si.dpdu, si.dpdv, si.n, si.sh_frame.s);
+    }
+}

@@ -12,6 +12,7 @@ use steradian::bsdf::{
     MicrofacetKind, Plastic, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric,
     TwoSided,
 };
+use steradian::texture::Texture;
 use steradian::Spectrum;
 
 use super::textures::{self, texture_param};
@@ -115,8 +116,13 @@ fn conductor_ior(node: &PluginNode) -> Result<(Spectrum, Spectrum), LoadError> {
     }
 }
 
-/// `distribution`, `alpha` or `alpha_u`/`alpha_v`, `sample_visible`.
-fn microfacet(node: &PluginNode) -> Result<MicrofacetDistribution, LoadError> {
+/// Spatially varying roughness (α_u, α_v), when given as textures.
+type AlphaTextures = Option<(Texture, Texture)>;
+
+/// `distribution`, `alpha` or `alpha_u`/`alpha_v`, `sample_visible`. With `textures`
+/// (roughconductor, roughdielectric) the roughness may be a texture, as in Mitsuba;
+/// roughplastic takes numbers only (Mitsuba precomputes tables for its α).
+fn microfacet(b: &Builder, node: &PluginNode, textures: bool) -> Result<(MicrofacetDistribution, AlphaTextures), LoadError> {
     let p = &node.props;
     let kind = match p
         .get_string("distribution")?
@@ -132,31 +138,43 @@ fn microfacet(node: &PluginNode) -> Result<MicrofacetDistribution, LoadError> {
         }
     };
     let sample_visible = p.get_bool("sample_visible")?.unwrap_or(true);
-    let (au, av) = if p.contains("alpha_u") || p.contains("alpha_v") {
-        if !(p.contains("alpha_u") && p.contains("alpha_v")) {
+    let given = |n: &str| p.contains(n) || (textures && node.children.iter().any(|c| c.name.as_deref() == Some(n)));
+    let alpha = |n: &str| -> Result<Texture, LoadError> {
+        if textures {
+            texture_param(b, node, n, Some(0.1))
+        } else {
+            Ok(Texture::Constant(Spectrum::splat(p.get_float(n)?.unwrap_or(0.1))))
+        }
+    };
+    let (tu, tv) = if given("alpha_u") || given("alpha_v") {
+        if !(given("alpha_u") && given("alpha_v")) {
             return Err(at(node)(
                 "both 'alpha_u' and 'alpha_v' must be specified".into(),
             ));
         }
-        if p.contains("alpha") {
+        if given("alpha") {
             return Err(at(node)(
                 "specify either 'alpha' or 'alpha_u'/'alpha_v', not both".into(),
             ));
         }
-        (
-            p.get_float("alpha_u")?.unwrap_or(0.1),
-            p.get_float("alpha_v")?.unwrap_or(0.1),
-        )
+        (alpha("alpha_u")?, alpha("alpha_v")?)
     } else {
-        let a = p.get_float("alpha")?.unwrap_or(0.1);
-        (a, a)
+        let a = alpha("alpha")?;
+        (a.clone(), a)
     };
-    if !(au >= 0.0 && av >= 0.0) {
-        return Err(at(node)(format!(
-            "roughness must be non-negative, got alpha_u = {au}, alpha_v = {av}"
-        )));
+    match (&tu, &tv) {
+        (Texture::Constant(u), Texture::Constant(v)) => {
+            // a constant is read like Mitsuba's eval_1 of it (the channel mean)
+            let (au, av) = (u.element_sum() / 3.0, v.element_sum() / 3.0);
+            if !(au >= 0.0 && av >= 0.0) {
+                return Err(at(node)(format!(
+                    "roughness must be non-negative, got alpha_u = {au}, alpha_v = {av}"
+                )));
+            }
+            Ok((MicrofacetDistribution::new(kind, au, av, sample_visible), None))
+        }
+        _ => Ok((MicrofacetDistribution::new(kind, 0.1, 0.1, sample_visible), Some((tu, tv)))),
     }
-    Ok(MicrofacetDistribution::new(kind, au, av, sample_visible))
 }
 
 /// Builds a BSDF node (not cached: use `Builder::bsdf_index` for scene BSDFs).
@@ -201,13 +219,12 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
         }
         "roughconductor" => {
             let (eta, k) = conductor_ior(node)?;
-            let d = microfacet(node)?;
-            Bsdf::RoughConductor(RoughConductor::new(
-                d,
-                eta,
-                k,
-                texture_param(b, node, "specular_reflectance", Some(1.0))?,
-            ))
+            let (d, alpha) = microfacet(b, node, true)?;
+            let mut c = RoughConductor::new(d, eta, k, texture_param(b, node, "specular_reflectance", Some(1.0))?);
+            if let Some((u, v)) = alpha {
+                c = c.with_alpha_textures(u, v);
+            }
+            Bsdf::RoughConductor(c)
         }
         "dielectric" | "thindielectric" | "roughdielectric" => {
             let eta = relative_ior(node)?;
@@ -222,7 +239,12 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
                             "the interior and exterior IORs must differ".into(),
                         ));
                     }
-                    Bsdf::RoughDielectric(RoughDielectric::new(microfacet(node)?, eta, r, t))
+                    let (d, alpha) = microfacet(b, node, true)?;
+                    let mut rd = RoughDielectric::new(d, eta, r, t);
+                    if let Some((u, v)) = alpha {
+                        rd = rd.with_alpha_textures(u, v);
+                    }
+                    Bsdf::RoughDielectric(rd)
                 }
             }
         }
@@ -244,7 +266,7 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
                         "the interior and exterior IORs must differ".into(),
                     ));
                 }
-                let d = microfacet(node)?;
+                let (d, _) = microfacet(b, node, false)?;
                 if !d.is_isotropic() {
                     return Err(at(node)(
                         "roughplastic supports isotropic roughness only (use 'alpha')".into(),

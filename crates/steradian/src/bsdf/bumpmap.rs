@@ -200,3 +200,48 @@ pub(crate) mod tests {
         assert!(g < 1.0 && (with - without * g).abs().max_element() < 1e-6, "{with} {without} {g}");
     }
 }
+
+#[cfg(test)]
+mod alpha_texture_tests {
+    //! Roughness textures of `roughconductor` and `roughdielectric` (kept here, with the other
+    //! texture-driven BSDF tests, to leave those files' own tests untouched).
+
+    use super::super::testing::*;
+    use super::super::{MicrofacetDistribution, MicrofacetKind, RoughConductor, RoughDielectric};
+    use super::tests::heights;
+    use super::*;
+
+    #[test]
+    fn roughness_is_read_at_the_shading_point() {
+        // a roughness between 0.05 and 0.55 that varies over the surface
+        let alpha = |uv: Vec2| 0.05 + 5.0 * heights().eval_1(uv);
+        for uv in [Vec2::new(0.3, 0.6), Vec2::new(0.8, 0.1)] {
+            let sp = ShadingPoint::at_uv(uv);
+            let a = alpha(uv);
+            let d = MicrofacetDistribution::new(MicrofacetKind::Ggx, a, a, true);
+            let plain = RoughConductor::new(d, Spectrum::splat(0.2), Spectrum::splat(3.0), Spectrum::ONE.into());
+            // a constant texture per test point stands in for the spatially varying one
+            let textured = RoughConductor::new(MicrofacetDistribution::new(MicrofacetKind::Ggx, 0.1, 0.1, true), Spectrum::splat(0.2), Spectrum::splat(3.0), Spectrum::ONE.into())
+                .with_alpha_textures(Spectrum::splat(a).into(), Spectrum::splat(a).into());
+            let (wo, wi) = (dir(30.0, 10.0), dir(50.0, 200.0));
+            assert_eq!(Bsdf::RoughConductor(plain.clone()).eval(&sp, wo, wi), Bsdf::RoughConductor(textured.clone()).eval(&sp, wo, wi));
+            assert_eq!(Bsdf::RoughConductor(plain).pdf(&sp, wo, wi), Bsdf::RoughConductor(textured).pdf(&sp, wo, wi));
+            let g = RoughDielectric::new(d, 1.5, Spectrum::ONE.into(), Spectrum::ONE.into());
+            let gt = RoughDielectric::new(MicrofacetDistribution::new(MicrofacetKind::Ggx, 0.1, 0.1, true), 1.5, Spectrum::ONE.into(), Spectrum::ONE.into())
+                .with_alpha_textures(Spectrum::splat(a).into(), Spectrum::splat(a).into());
+            let wt = -dir(40.0, 200.0);
+            assert_eq!(Bsdf::RoughDielectric(g.clone()).eval(&sp, wo, wt), Bsdf::RoughDielectric(gt.clone()).eval(&sp, wo, wt));
+            assert_eq!(Bsdf::RoughDielectric(g).pdf(&sp, wo, wt), Bsdf::RoughDielectric(gt).pdf(&sp, wo, wt));
+        }
+        // a bitmap roughness: sampling still matches the density at the test point
+        let b = Bsdf::RoughConductor(
+            RoughConductor::new(MicrofacetDistribution::new(MicrofacetKind::Beckmann, 0.1, 0.1, true), Spectrum::splat(0.2), Spectrum::splat(3.0), Spectrum::ONE.into())
+                .with_alpha_textures(heights(), heights()),
+        );
+        let a = heights().eval_1(sp().uv);
+        assert!(a > 0.02, "{a}");
+        check_sample_consistency(&b, dir(40.0, 0.0), 3);
+        let p = chi2_pvalue_sub(&b, dir(40.0, 0.0), 200_000, 77, 32);
+        assert!(p > 0.01, "p-value {p}");
+    }
+}

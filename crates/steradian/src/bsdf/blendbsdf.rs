@@ -13,7 +13,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{Bsdf, BsdfSample, Lobe, ShadingPoint};
+use super::{positive, Bsdf, BsdfSample, Lobe, ShadingPoint};
 use crate::texture::Texture;
 use crate::Spectrum;
 
@@ -79,7 +79,7 @@ impl BlendBsdf {
             Lobe::Delta => s.pdf *= chance,
             Lobe::Smooth => {
                 let pdf = self.pdf(sp, wo, s.wi);
-                if !(pdf > 0.0) {
+                if !positive(pdf) {
                     return None;
                 }
                 s.weight = self.eval(sp, wo, s.wi) * s.wi.z.abs() / pdf;

@@ -27,7 +27,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{Bsdf, BsdfSample, ShadingPoint};
+use super::{positive, Bsdf, BsdfSample, ShadingPoint};
 use crate::geometry::Frame;
 use crate::Spectrum;
 
@@ -97,7 +97,7 @@ impl Perturbed {
     #[inline]
     pub fn eval(&self, nested: &Bsdf, wo: Vec3, wi: Vec3) -> Spectrum {
         let wi_p = self.frame.to_local(wi);
-        if !(wi.z * wi_p.z > 0.0) {
+        if !positive(wi.z * wi_p.z) {
             return Spectrum::ZERO;
         }
         nested.eval(&self.sp, self.frame.to_local(wo), wi_p) * (wi_p.z.abs() / wi.z.abs() * self.g(wi))
@@ -106,7 +106,7 @@ impl Perturbed {
     #[inline]
     pub fn pdf(&self, nested: &Bsdf, wo: Vec3, wi: Vec3) -> f32 {
         let wi_p = self.frame.to_local(wi);
-        if !(wi.z * wi_p.z > 0.0) {
+        if !positive(wi.z * wi_p.z) {
             return 0.0;
         }
         nested.pdf(&self.sp, self.frame.to_local(wo), wi_p)
@@ -116,7 +116,7 @@ impl Perturbed {
     pub fn sample(&self, nested: &Bsdf, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
         let mut s = nested.sample(&self.sp, self.frame.to_local(wo), u1, u2)?;
         let wi = self.frame.to_world(s.wi);
-        if !(wi.z * s.wi.z > 0.0) {
+        if !positive(wi.z * s.wi.z) {
             return None;
         }
         s.wi = wi;

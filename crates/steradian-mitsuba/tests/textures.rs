@@ -27,6 +27,7 @@ fn load(name: &str, body: &str) -> Result<steradian::scene::Scene, LoadError> {
         std::fs::copy(assets().join(f), dir.join(f)).unwrap();
     }
     std::fs::write(dir.join("corrupt.png"), b"\x89PNG\r\n\x1a\n not really").unwrap();
+    std::fs::write(dir.join("tri.obj"), "v 0 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
     let xml = format!("<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"perspective\"/>\n{body}\n</scene>");
     let path = dir.join(name);
     std::fs::write(&path, xml).unwrap();
@@ -265,4 +266,47 @@ fn masks_in_path_and_direct_behave_as_in_mitsuba() {
     let ratio = d1 / d0;
     let se = ratio * ((e0 / d0).powi(2) + (e1 / d1).powi(2)).sqrt();
     assert!((ratio - 0.845872).abs() < 5.0 * se + 1e-4, "direct: ratio {ratio} ± {se}");
+}
+
+/// Hits `shape_xml` along the ray (o, d).
+fn hit(scene: &steradian::scene::Scene, o: [f32; 3], d: [f32; 3]) -> steradian::geometry::SurfaceInteraction {
+    let ray = steradian::geometry::Ray::infinite(steradian::Vec3::from(o), steradian::Vec3::from(d).normalize());
+    scene.intersect(&ray).expect("the ray must hit")
+}
+
+#[test]
+fn dpdu_dpdv_match_mitsuba_and_finite_differences() {
+    use steradian::Vec3;
+    // Mitsuba 3.9.1 (scalar_rgb) si.dp_du, si.dp_dv for the same shapes and rays
+    let cases: [(&str, [f32; 3], [f32; 3], [f32; 3], [f32; 3]); 6] = [
+        (r#"<shape type="rectangle"><transform name="to_world"><scale x="2" y="3" z="1"/></transform></shape>"#, [0.5, 0.7, 5.0], [0.0, 0.0, -1.0], [4.0, 0.0, 0.0], [0.0, 6.0, 0.0]),
+        (r#"<shape type="disk"><transform name="to_world"><scale x="2" y="2" z="1"/></transform></shape>"#, [0.6, 0.8, 5.0], [0.0, 0.0, -1.0], [1.2, 1.6, 0.0], [-5.02655, 3.76991, 0.0]),
+        (r#"<shape type="sphere"><float name="radius" value="2"/></shape>"#, [0.6, 0.8, 5.0], [0.0, 0.0, -1.0], [-5.02655, 3.76991, 0.0], [3.26484, 4.35312, -3.14159]),
+        (r#"<shape type="cylinder"><float name="radius" value="2"/></shape>"#, [5.0, 0.8, 0.3], [-1.0, 0.0, 0.0], [-5.02655, 11.5173, 0.0], [0.0, 0.0, 1.0]),
+        (r#"<shape type="cube"/>"#, [0.3, 0.2, 5.0], [0.0, 0.0, -1.0], [0.0, 2.0, 0.0], [2.0, 0.0, 0.0]),
+        (r#"<shape type="cube"/>"#, [5.0, 0.3, 0.2], [-1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, -2.0]),
+    ];
+    for (xml, o, d, dpdu, dpdv) in cases {
+        let scene = load("dp.xml", xml).unwrap();
+        let si = hit(&scene, o, d);
+        assert!((si.dpdu - Vec3::from(dpdu)).length() < 1e-4 * (1.0 + si.dpdu.length()), "{xml}: dpdu {} vs {dpdu:?}", si.dpdu);
+        assert!((si.dpdv - Vec3::from(dpdv)).length() < 1e-4 * (1.0 + si.dpdv.length()), "{xml}: dpdv {} vs {dpdv:?}", si.dpdv);
+        // first order: a nearby hit moves by dpdu·Δu + dpdv·Δv
+        for off in [[1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0], [0.0, 0.0, 1e-3]] {
+            let o2 = [o[0] + off[0], o[1] + off[1], o[2] + off[2]];
+            let si2 = hit(&scene, o2, d);
+            let (dp, duv) = (si2.p - si.p, si2.uv - si.uv);
+            if dp.length() < 1e-5 {
+                continue; // the offset is along the ray
+            }
+            let pred = si.dpdu * duv.x + si.dpdv * duv.y;
+            assert!((pred - dp).length() < 2e-2 * dp.length(), "{xml} {off:?}: Δp {dp} vs {pred}");
+        }
+    }
+    // a mesh without uvs is parametrised by its barycentrics: uv = (b1, b2), dpdu = p1 − p0,
+    // dpdv = p2 − p0 (Mitsuba 3.9.1: uv (0.2, 0.3), dp_du (2, 0, 0), dp_dv (0, 1, 0))
+    let scene = load("dp.xml", r#"<shape type="obj"><string name="filename" value="tri.obj"/></shape>"#).unwrap();
+    let si = hit(&scene, [0.4, 0.3, 1.0], [0.0, 0.0, -1.0]);
+    assert!((si.uv - Vec2::new(0.2, 0.3)).length() < 1e-6, "{}", si.uv);
+    assert_eq!((si.dpdu, si.dpdv), (Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)));
 }

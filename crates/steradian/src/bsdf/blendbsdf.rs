@@ -121,6 +121,7 @@ mod tests {
                 let b = blend(w, diffuse(0.9), rough(a));
                 let p = if a < 0.15 { chi2_pvalue_sub(&b, dir(theta, 60.0), 200_000, 20 + k, 16) } else { chi2_pvalue(&b, dir(theta, 60.0), 200_000, 20 + k) };
                 k += 1;
+                eprintln!("χ² p-value {p:.3}");
                 assert!(p > 0.01 / 9.0, "w={w} α={a} θ={theta}: p-value {p}");
             }
         }

@@ -157,6 +157,7 @@ pub(crate) mod tests {
             for theta in [0.0, 45.0, 80.0] {
                 let p = chi2_pvalue_sub(&bump(scale, nested.clone()), dir(theta, 100.0), 200_000, 40 + k, 32);
                 k += 1;
+                eprintln!("χ² p-value {p:.3}");
                 assert!(p > 0.01 / 9.0, "scale {scale} θ={theta}: p-value {p}");
             }
         }

@@ -105,6 +105,7 @@ mod tests {
             for theta in [10.0, 50.0, 80.0] {
                 let p = chi2_pvalue_with_delta(&mask(a, nested.clone()), dir(theta, 30.0), 200_000, 7 + k);
                 k += 1;
+                eprintln!("χ² p-value {p:.3}");
                 assert!(p > 0.01 / 9.0, "a={a} θ={theta}: p-value {p}");
             }
         }

@@ -122,6 +122,7 @@ mod tests {
             for theta in [0.0, 40.0, 80.0] {
                 let p = chi2_pvalue_sub(&b, dir(theta, 20.0), 200_000, 60 + k, 32);
                 k += 1;
+                eprintln!("χ² p-value {p:.3}");
                 assert!(p > 0.01 / 6.0, "θ={theta}: p-value {p}");
                 check_sample_consistency(&b, dir(theta, 20.0), 9);
                 let (m, se) = albedo(&b, dir(theta, 20.0), 50_000, 10);

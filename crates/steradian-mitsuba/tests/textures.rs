@@ -278,10 +278,12 @@ fn hit(scene: &steradian::scene::Scene, o: [f32; 3], d: [f32; 3]) -> steradian::
 fn dpdu_dpdv_match_mitsuba_and_finite_differences() {
     use steradian::Vec3;
     // Mitsuba 3.9.1 (scalar_rgb) si.dp_du, si.dp_dv for the same shapes and rays
-    let cases: [(&str, [f32; 3], [f32; 3], [f32; 3], [f32; 3]); 6] = [
+    /// shape, ray origin and direction, Mitsuba's dp/du and dp/dv
+    type Case = (&'static str, [f32; 3], [f32; 3], [f32; 3], [f32; 3]);
+    let cases: [Case; 6] = [
         (r#"<shape type="rectangle"><transform name="to_world"><scale x="2" y="3" z="1"/></transform></shape>"#, [0.5, 0.7, 5.0], [0.0, 0.0, -1.0], [4.0, 0.0, 0.0], [0.0, 6.0, 0.0]),
         (r#"<shape type="disk"><transform name="to_world"><scale x="2" y="2" z="1"/></transform></shape>"#, [0.6, 0.8, 5.0], [0.0, 0.0, -1.0], [1.2, 1.6, 0.0], [-5.02655, 3.76991, 0.0]),
-        (r#"<shape type="sphere"><float name="radius" value="2"/></shape>"#, [0.6, 0.8, 5.0], [0.0, 0.0, -1.0], [-5.02655, 3.76991, 0.0], [3.26484, 4.35312, -3.14159]),
+        (r#"<shape type="sphere"><float name="radius" value="2"/></shape>"#, [0.6, 0.8, 5.0], [0.0, 0.0, -1.0], [-5.02655, 3.76991, 0.0], [3.26484, 4.35312, -std::f32::consts::PI]),
         (r#"<shape type="cylinder"><float name="radius" value="2"/></shape>"#, [5.0, 0.8, 0.3], [-1.0, 0.0, 0.0], [-5.02655, 11.5173, 0.0], [0.0, 0.0, 1.0]),
         (r#"<shape type="cube"/>"#, [0.3, 0.2, 5.0], [0.0, 0.0, -1.0], [0.0, 2.0, 0.0], [2.0, 0.0, 0.0]),
         (r#"<shape type="cube"/>"#, [5.0, 0.3, 0.2], [-1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, -2.0]),

@@ -26,7 +26,7 @@ fn temp_dir(name: &str) -> PathBuf {
 }
 
 fn sp() -> ShadingPoint {
-    ShadingPoint { uv: Vec2::ZERO }
+    ShadingPoint::at_uv(Vec2::ZERO)
 }
 
 /// Renders with i.i.d. samples (so that per-pixel standard errors are valid); returns the

@@ -1,20 +1,23 @@
 //! BSDF plugins: `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`,
-//! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, and steradian's own
-//! `phong` and `merl`. Parameters and defaults are Mitsuba 3's (see each
-//! plugin's documentation in `steradian::bsdf`); only constant spectra and floats are
-//! accepted (no textures yet).
+//! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `mask`, `blendbsdf`,
+//! `bumpmap`, `normalmap`, and steradian's own `phong` and `merl`. Parameters and defaults are
+//! Mitsuba 3's (see each plugin's documentation in `steradian::bsdf`). Reflectances and
+//! transmittances (`phong`'s too), `mask`'s `opacity` and `blendbsdf`'s `weight` take a value or
+//! a texture; IORs and roughness are values.
 
 use std::sync::Arc;
 
 use steradian::bsdf::ior::{conductor_preset, lookup_ior};
 use steradian::bsdf::{
-    Bsdf, Conductor, Dielectric, Diffuse, InternalScattering, MicrofacetDistribution,
+    BlendBsdf, Bsdf, BumpMap, Conductor, Mask, NormalMap, PerturbOptions, Dielectric, Diffuse, InternalScattering, MicrofacetDistribution,
     MicrofacetKind, Plastic, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric,
     TwoSided,
 };
 use steradian::bsdf::{Merl, MerlTable, Phong};
+use steradian::texture::Texture;
 use steradian::Spectrum;
 
+use super::textures::{self, texture_param};
 use super::{at, at_property, unknown_type, Builder};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
@@ -32,7 +35,34 @@ const KNOWN: &[&str] = &[
     "roughplastic",
     "phong",
     "merl",
+    "mask",
+    "blendbsdf",
+    "bumpmap",
+    "normalmap",
 ];
+
+/// The nested BSDFs of `node` (named or not), built, in document order.
+fn nested_bsdfs(b: &Builder, node: &PluginNode) -> Result<Vec<Bsdf>, LoadError> {
+    node.children_of(ObjectTag::Bsdf).iter().map(|c| build(b, &c.node)).collect()
+}
+
+/// `flip_invalid_normals` and `use_shadowing_function` of `bumpmap` and `normalmap`.
+fn perturb_options(node: &PluginNode) -> Result<PerturbOptions, LoadError> {
+    let d = PerturbOptions::default();
+    Ok(PerturbOptions {
+        flip_invalid_normals: node.props.get_bool("flip_invalid_normals")?.unwrap_or(d.flip_invalid_normals),
+        use_shadowing_function: node.props.get_bool("use_shadowing_function")?.unwrap_or(d.use_shadowing_function),
+    })
+}
+
+/// Exactly one nested BSDF.
+fn one_nested(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let mut v = nested_bsdfs(b, node)?;
+    if v.len() != 1 {
+        return Err(at(node)(format!("expects exactly one nested BSDF, got {}", v.len())));
+    }
+    Ok(v.remove(0))
+}
 
 /// An IOR given as a number or as a name from Mitsuba's table (`int_ior`, `ext_ior`).
 fn ior(node: &PluginNode, name: &str, default: &str) -> Result<f32, LoadError> {
@@ -90,8 +120,13 @@ fn conductor_ior(node: &PluginNode) -> Result<(Spectrum, Spectrum), LoadError> {
     }
 }
 
-/// `distribution`, `alpha` or `alpha_u`/`alpha_v`, `sample_visible`.
-fn microfacet(node: &PluginNode) -> Result<MicrofacetDistribution, LoadError> {
+/// Spatially varying roughness (α_u, α_v), when given as textures.
+type AlphaTextures = Option<(Texture, Texture)>;
+
+/// `distribution`, `alpha` or `alpha_u`/`alpha_v`, `sample_visible`. With `textures`
+/// (roughconductor, roughdielectric) the roughness may be a texture, as in Mitsuba;
+/// roughplastic takes numbers only (Mitsuba precomputes tables for its α).
+fn microfacet(b: &Builder, node: &PluginNode, textures: bool) -> Result<(MicrofacetDistribution, AlphaTextures), LoadError> {
     let p = &node.props;
     let kind = match p
         .get_string("distribution")?
@@ -107,31 +142,43 @@ fn microfacet(node: &PluginNode) -> Result<MicrofacetDistribution, LoadError> {
         }
     };
     let sample_visible = p.get_bool("sample_visible")?.unwrap_or(true);
-    let (au, av) = if p.contains("alpha_u") || p.contains("alpha_v") {
-        if !(p.contains("alpha_u") && p.contains("alpha_v")) {
+    let given = |n: &str| p.contains(n) || (textures && node.children.iter().any(|c| c.name.as_deref() == Some(n)));
+    let alpha = |n: &str| -> Result<Texture, LoadError> {
+        if textures {
+            texture_param(b, node, n, Some(0.1))
+        } else {
+            Ok(Texture::Constant(Spectrum::splat(p.get_float(n)?.unwrap_or(0.1))))
+        }
+    };
+    let (tu, tv) = if given("alpha_u") || given("alpha_v") {
+        if !(given("alpha_u") && given("alpha_v")) {
             return Err(at(node)(
                 "both 'alpha_u' and 'alpha_v' must be specified".into(),
             ));
         }
-        if p.contains("alpha") {
+        if given("alpha") {
             return Err(at(node)(
                 "specify either 'alpha' or 'alpha_u'/'alpha_v', not both".into(),
             ));
         }
-        (
-            p.get_float("alpha_u")?.unwrap_or(0.1),
-            p.get_float("alpha_v")?.unwrap_or(0.1),
-        )
+        (alpha("alpha_u")?, alpha("alpha_v")?)
     } else {
-        let a = p.get_float("alpha")?.unwrap_or(0.1);
-        (a, a)
+        let a = alpha("alpha")?;
+        (a.clone(), a)
     };
-    if !(au >= 0.0 && av >= 0.0) {
-        return Err(at(node)(format!(
-            "roughness must be non-negative, got alpha_u = {au}, alpha_v = {av}"
-        )));
+    match (&tu, &tv) {
+        (Texture::Constant(u), Texture::Constant(v)) => {
+            // a constant is read like Mitsuba's eval_1 of it (the channel mean)
+            let (au, av) = (u.element_sum() / 3.0, v.element_sum() / 3.0);
+            if !(au >= 0.0 && av >= 0.0) {
+                return Err(at(node)(format!(
+                    "roughness must be non-negative, got alpha_u = {au}, alpha_v = {av}"
+                )));
+            }
+            Ok((MicrofacetDistribution::new(kind, au, av, sample_visible), None))
+        }
+        _ => Ok((MicrofacetDistribution::new(kind, 0.1, 0.1, sample_visible), Some((tu, tv)))),
     }
-    Ok(MicrofacetDistribution::new(kind, au, av, sample_visible))
 }
 
 /// Builds a BSDF node (not cached: use `Builder::bsdf_index` for scene BSDFs).
@@ -139,10 +186,7 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
     let p = &node.props;
     let bsdf = match node.plugin_type.as_str() {
         "diffuse" => {
-            let reflectance = p
-                .get_spectrum("reflectance")?
-                .unwrap_or(Spectrum::splat(0.5));
-            Bsdf::Diffuse(Diffuse::new(reflectance.into()))
+            Bsdf::Diffuse(Diffuse::new(texture_param(b, node, "reflectance", Some(0.5))?))
         }
         "twosided" => {
             let children = node.children_of(ObjectTag::Bsdf);
@@ -174,23 +218,22 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
             Bsdf::Conductor(Conductor::new(
                 eta,
                 k,
-                spectrum(node, "specular_reflectance", 1.0)?.into(),
+                texture_param(b, node, "specular_reflectance", Some(1.0))?,
             ))
         }
         "roughconductor" => {
             let (eta, k) = conductor_ior(node)?;
-            let d = microfacet(node)?;
-            Bsdf::RoughConductor(RoughConductor::new(
-                d,
-                eta,
-                k,
-                spectrum(node, "specular_reflectance", 1.0)?.into(),
-            ))
+            let (d, alpha) = microfacet(b, node, true)?;
+            let mut c = RoughConductor::new(d, eta, k, texture_param(b, node, "specular_reflectance", Some(1.0))?);
+            if let Some((u, v)) = alpha {
+                c = c.with_alpha_textures(u, v);
+            }
+            Bsdf::RoughConductor(c)
         }
         "dielectric" | "thindielectric" | "roughdielectric" => {
             let eta = relative_ior(node)?;
-            let r = spectrum(node, "specular_reflectance", 1.0)?.into();
-            let t = spectrum(node, "specular_transmittance", 1.0)?.into();
+            let r = texture_param(b, node, "specular_reflectance", Some(1.0))?;
+            let t = texture_param(b, node, "specular_transmittance", Some(1.0))?;
             match node.plugin_type.as_str() {
                 "dielectric" => Bsdf::Dielectric(Dielectric::new(eta, r, t)),
                 "thindielectric" => Bsdf::ThinDielectric(ThinDielectric::new(eta, r, t)),
@@ -200,15 +243,20 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
                             "the interior and exterior IORs must differ".into(),
                         ));
                     }
-                    Bsdf::RoughDielectric(RoughDielectric::new(microfacet(node)?, eta, r, t))
+                    let (d, alpha) = microfacet(b, node, true)?;
+                    let mut rd = RoughDielectric::new(d, eta, r, t);
+                    if let Some((u, v)) = alpha {
+                        rd = rd.with_alpha_textures(u, v);
+                    }
+                    Bsdf::RoughDielectric(rd)
                 }
             }
         }
         "plastic" | "roughplastic" => {
             // Mitsuba: plastic coatings default to polypropylene in air.
             let eta = ior(node, "int_ior", "polypropylene")? / ior(node, "ext_ior", "air")?;
-            let diffuse = spectrum(node, "diffuse_reflectance", 0.5)?.into();
-            let specular = spectrum(node, "specular_reflectance", 1.0)?.into();
+            let diffuse = texture_param(b, node, "diffuse_reflectance", Some(0.5))?;
+            let specular = texture_param(b, node, "specular_reflectance", Some(1.0))?;
             let internal = if p.get_bool("nonlinear")?.unwrap_or(false) {
                 InternalScattering::Nonlinear
             } else {
@@ -222,7 +270,7 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
                         "the interior and exterior IORs must differ".into(),
                     ));
                 }
-                let d = microfacet(node)?;
+                let (d, _) = microfacet(b, node, false)?;
                 if !d.is_isotropic() {
                     return Err(at(node)(
                         "roughplastic supports isotropic roughness only (use 'alpha')".into(),
@@ -232,8 +280,8 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
             }
         }
         "phong" => {
-            let diffuse = spectrum(node, "diffuse_reflectance", 0.5)?.into();
-            let specular = spectrum(node, "specular_reflectance", 0.2)?.into();
+            let diffuse = texture_param(b, node, "diffuse_reflectance", Some(0.5))?;
+            let specular = texture_param(b, node, "specular_reflectance", Some(0.2))?;
             let exponent = p.get_float("exponent")?.unwrap_or(30.0);
             Phong::new(diffuse, specular, exponent)
                 .map(Bsdf::Phong)
@@ -249,6 +297,34 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
                 LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
             })?;
             Bsdf::Merl(Merl::new(table))
+        }
+        "mask" => {
+            let opacity = texture_param(b, node, "opacity", Some(0.5))?;
+            Bsdf::Mask(Mask::new(opacity, one_nested(b, node)?))
+        }
+        "blendbsdf" => {
+            let weight = texture_param(b, node, "weight", None)?;
+            match <[Bsdf; 2]>::try_from(nested_bsdfs(b, node)?) {
+                Ok([b0, b1]) => Bsdf::BlendBsdf(BlendBsdf::new(weight, b0, b1)),
+                Err(v) => return Err(at(node)(format!("expects two nested BSDFs, got {}", v.len()))),
+            }
+        }
+        "bumpmap" => {
+            let textures = node.children_of(ObjectTag::Texture);
+            if textures.len() != 1 {
+                return Err(at(node)(format!("expects exactly one nested texture (the height), got {}", textures.len())));
+            }
+            let height = textures::build(b, &textures[0].node)?;
+            let scale = p.get_float("scale")?.unwrap_or(1.0);
+            if !scale.is_finite() {
+                return Err(at(node)(format!("scale must be finite, got {scale}")));
+            }
+            let nested = one_nested(b, node)?;
+            Bsdf::BumpMap(BumpMap::new(height, scale, nested, perturb_options(node)?).map_err(|m| LoadError::at(textures[0].pos(), format!("{}: {m}", node.desc())))?)
+        }
+        "normalmap" => {
+            let normals = texture_param(b, node, "normalmap", None)?;
+            Bsdf::NormalMap(NormalMap::new(normals, one_nested(b, node)?, perturb_options(node)?))
         }
         _ => return Err(unknown_type(node, KNOWN)),
     };

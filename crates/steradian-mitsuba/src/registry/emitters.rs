@@ -12,17 +12,19 @@ use crate::xml::PluginNode;
 const STANDALONE: &[&str] = &["point", "spot", "directional", "constant"];
 
 /// The `area` emitter of shape number `shape`.
-pub(crate) fn build_area(node: &PluginNode, shape: u32) -> Result<Emitter, LoadError> {
+pub(crate) fn build_area(b: &super::Builder, node: &PluginNode, shape: u32) -> Result<Emitter, LoadError> {
     if node.plugin_type != "area" {
         return Err(LoadError::at(
             &node.pos,
             format!("a shape can only carry an 'area' emitter, not '{}'", node.plugin_type),
         ));
     }
-    let radiance = node.props.get_spectrum("radiance")?.unwrap_or(Spectrum::ONE);
-    check_non_negative(node, "radiance", radiance)?;
+    let radiance = super::textures::texture_param(b, node, "radiance", Some(1.0))?;
+    if let steradian::texture::Texture::Constant(v) = radiance {
+        check_non_negative(node, "radiance", v)?;
+    }
     node.check_all_used()?;
-    Ok(Emitter::Area(AreaLight::new(shape, radiance.into())))
+    Ok(Emitter::Area(AreaLight::new(shape, radiance)))
 }
 
 fn check_non_negative(node: &PluginNode, name: &str, v: Spectrum) -> Result<(), LoadError> {

@@ -11,6 +11,7 @@ mod emitters;
 mod integrators;
 pub(crate) mod sensors;
 mod shapes;
+mod textures;
 
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -148,6 +149,10 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError
             ObjectTag::Sensor => {
                 let s = sensors::build(node, None)?;
                 b.desc.sensors.push(s);
+            }
+            ObjectTag::Texture => {
+                // built where it is referenced; built here too so that its errors show
+                textures::build(&b, node)?;
             }
             ObjectTag::Integrator => {
                 if let Some(first) = integrator_pos.replace(node.pos.clone()) {

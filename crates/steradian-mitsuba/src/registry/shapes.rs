@@ -77,7 +77,7 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
     let shape_index = b.desc.shapes.len() as u32;
     let emitter = match emitter_nodes.first() {
         Some(e) => {
-            let light = emitters::build_area(&e.node, shape_index)?;
+            let light = emitters::build_area(b, &e.node, shape_index)?;
             b.desc.emitters.push(light);
             Some((b.desc.emitters.len() - 1) as u32)
         }

@@ -6,14 +6,19 @@
 //! return 0 unless both directions lie above the surface; `twosided` makes both faces
 //! reflect.
 
+mod blendbsdf;
+mod bumpmap;
 mod conductor;
 mod dielectric;
 mod diffuse;
 mod merl;
 pub mod fresnel;
 pub mod ior;
+mod mask;
 pub mod microfacet;
 mod phong;
+mod normalmap;
+mod perturbed;
 mod plastic;
 mod roughconductor;
 mod roughdielectric;
@@ -21,12 +26,17 @@ mod roughplastic;
 mod thindielectric;
 mod twosided;
 
+pub use blendbsdf::BlendBsdf;
+pub use bumpmap::BumpMap;
 pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
 pub use merl::{Merl, MerlTable};
 pub use microfacet::{MicrofacetDistribution, MicrofacetKind};
 pub use phong::Phong;
+pub use mask::Mask;
+pub use normalmap::NormalMap;
+pub use perturbed::PerturbOptions;
 pub use plastic::{InternalScattering, Plastic};
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
@@ -65,10 +75,30 @@ pub struct BsdfSample {
     pub eta: f32,
 }
 
-/// Where the BSDF is evaluated: the surface coordinates textures need.
+/// Where the BSDF is evaluated: the surface coordinates textures need and the local
+/// differential geometry that bump and normal maps perturb.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShadingPoint {
+    /// Surface (texture) coordinates.
     pub uv: Vec2,
+    /// ∂p/∂u and ∂p/∂v in the local shading frame (m per unit of u, v).
+    pub dpdu: Vec3,
+    pub dpdv: Vec3,
+    /// The geometric normal in the local shading frame (unit).
+    pub ng: Vec3,
+}
+
+impl ShadingPoint {
+    /// A point at `uv` of a flat surface whose shading frame is its (u, v, n) frame.
+    pub fn at_uv(uv: Vec2) -> Self {
+        ShadingPoint { uv, dpdu: Vec3::X, dpdv: Vec3::Y, ng: Vec3::Z }
+    }
+
+    /// The shading point of a surface interaction (its vectors taken to the shading frame).
+    #[inline]
+    pub fn new(si: &crate::geometry::SurfaceInteraction) -> Self {
+        ShadingPoint { uv: si.uv, dpdu: si.to_local(si.dpdu), dpdv: si.to_local(si.dpdv), ng: si.to_local(si.n) }
+    }
 }
 
 /// A BSDF. Closed enum: one variant per BSDF plugin.
@@ -85,6 +115,10 @@ pub enum Bsdf {
     RoughPlastic(RoughPlastic),
     Phong(Phong),
     Merl(Merl),
+    Mask(Mask),
+    BlendBsdf(BlendBsdf),
+    BumpMap(BumpMap),
+    NormalMap(NormalMap),
 }
 
 /// Dispatches a method call to the variant's implementation.
@@ -102,6 +136,10 @@ macro_rules! dispatch {
             Bsdf::RoughPlastic($b) => $e,
             Bsdf::Phong($b) => $e,
             Bsdf::Merl($b) => $e,
+            Bsdf::Mask($b) => $e,
+            Bsdf::BlendBsdf($b) => $e,
+            Bsdf::BumpMap($b) => $e,
+            Bsdf::NormalMap($b) => $e,
         }
     };
 }
@@ -133,6 +171,10 @@ impl Bsdf {
             Bsdf::Phong(_) | Bsdf::Merl(_) => true,
             Bsdf::Conductor(_) | Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided(b) => b.has_smooth_lobe(),
+            Bsdf::Mask(b) => b.has_smooth_lobe(),
+            Bsdf::BlendBsdf(b) => b.has_smooth_lobe(),
+            Bsdf::BumpMap(b) => b.has_smooth_lobe(),
+            Bsdf::NormalMap(b) => b.has_smooth_lobe(),
         }
     }
 
@@ -172,7 +214,7 @@ pub(crate) mod testing {
     use crate::sampling::Pcg32;
 
     pub fn sp() -> ShadingPoint {
-        ShadingPoint { uv: Vec2::new(0.3, 0.6) }
+        ShadingPoint::at_uv(Vec2::new(0.3, 0.6))
     }
 
     pub fn dir(theta_deg: f32, phi_deg: f32) -> Vec3 {
@@ -191,6 +233,17 @@ pub(crate) mod testing {
     /// [`chi2_pvalue`] with `sub`² pdf evaluations per cell for the expected counts: sharp
     /// lobes (α ≲ 0.1) need a finer quadrature than the default 8² to be integrated exactly.
     pub fn chi2_pvalue_sub(bsdf: &Bsdf, wo: Vec3, n: usize, seed: u64, sub: usize) -> f64 {
+        chi2_pvalue_impl(bsdf, wo, n, seed, sub, false)
+    }
+
+    /// [`chi2_pvalue`] for BSDFs that also have delta lobes (e.g. `mask`'s pass-through):
+    /// delta samples are left out of the histogram, whose expected counts come from `pdf()`
+    /// (the smooth part's density, which integrates to the probability of a smooth sample).
+    pub fn chi2_pvalue_with_delta(bsdf: &Bsdf, wo: Vec3, n: usize, seed: u64) -> f64 {
+        chi2_pvalue_impl(bsdf, wo, n, seed, 8, true)
+    }
+
+    fn chi2_pvalue_impl(bsdf: &Bsdf, wo: Vec3, n: usize, seed: u64, sub: usize, allow_delta: bool) -> f64 {
         const NT: usize = 20;
         const NP: usize = 40;
         let mut observed = vec![0f64; NT * NP];
@@ -216,7 +269,7 @@ pub(crate) mod testing {
                 observed[it * NP + ip] += 1.0;
             }
         }
-        assert_eq!(delta, 0, "chi2 test covers smooth lobes only");
+        assert!(allow_delta || delta == 0, "chi2 test covers smooth lobes only");
         // expected counts: integrate the pdf over each cell (midpoint rule on a fine grid)
         let sub_n = sub;
         let mut expected = vec![0f64; NT * NP];

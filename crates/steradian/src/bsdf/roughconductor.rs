@@ -3,8 +3,8 @@
 //! | parameter              | type     | default    | meaning |
 //! |------------------------|----------|------------|---------|
 //! | `distribution`         | string   | `beckmann` | `beckmann` or `ggx` |
-//! | `alpha`                | float    | 0.1        | isotropic roughness α (used directly, no remapping) |
-//! | `alpha_u`, `alpha_v`   | float    | —          | anisotropic roughness (both required; exclusive with `alpha`) |
+//! | `alpha`                | float/texture | 0.1   | isotropic roughness α (used directly, no remapping; a texture's `eval_1`, clamped to ≥ 10⁻⁴) |
+//! | `alpha_u`, `alpha_v`   | float/texture | —     | anisotropic roughness (both required; exclusive with `alpha`) |
 //! | `sample_visible`       | boolean  | true       | sample visible normals |
 //! | `material`             | string   | `none`     | conductor preset (see `conductor`) |
 //! | `eta`, `k`             | spectrum | 0, 1       | complex IOR (dimensionless) |
@@ -29,6 +29,9 @@ use crate::Spectrum;
 #[derive(Clone, Debug, PartialEq)]
 pub struct RoughConductor {
     pub distribution: MicrofacetDistribution,
+    /// Spatially varying α_u, α_v (Mitsuba accepts textures); `None` when both are constant,
+    /// which `distribution` then holds.
+    pub alpha_textures: Option<Box<(Texture, Texture)>>,
     pub eta: Spectrum,
     pub k: Spectrum,
     pub specular_reflectance: Texture,
@@ -36,7 +39,25 @@ pub struct RoughConductor {
 
 impl RoughConductor {
     pub fn new(distribution: MicrofacetDistribution, eta: Spectrum, k: Spectrum, specular_reflectance: Texture) -> Self {
-        RoughConductor { distribution, eta, k, specular_reflectance }
+        RoughConductor { distribution, alpha_textures: None, eta, k, specular_reflectance }
+    }
+
+    /// Spatially varying roughness: α_u, α_v read from textures (their `eval_1`).
+    pub fn with_alpha_textures(mut self, alpha_u: Texture, alpha_v: Texture) -> Self {
+        self.alpha_textures = Some(Box::new((alpha_u, alpha_v)));
+        self
+    }
+
+    /// The microfacet distribution at the shading point.
+    #[inline]
+    fn distribution_at(&self, sp: &ShadingPoint) -> MicrofacetDistribution {
+        match &self.alpha_textures {
+            None => self.distribution,
+            Some(t) => {
+                let d = &self.distribution;
+                MicrofacetDistribution::new(d.kind, t.0.eval_1(sp.uv), t.1.eval_1(sp.uv), d.sample_visible)
+            }
+        }
     }
 
     #[inline]
@@ -45,17 +66,18 @@ impl RoughConductor {
             return Spectrum::ZERO;
         }
         let h = (wo + wi).normalize();
-        let d = self.distribution.d(h);
+        let distr = self.distribution_at(sp);
+        let d = distr.d(h);
         if d == 0.0 {
             return Spectrum::ZERO;
         }
-        let g = self.distribution.g(wo, wi, h);
+        let g = distr.g(wo, wi, h);
         let f = fresnel_conductor(wo.dot(h), self.eta, self.k);
         self.specular_reflectance.eval(sp.uv) * f * (d * g / (4.0 * wo.z * wi.z))
     }
 
     #[inline]
-    pub fn pdf(&self, _sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
+    pub fn pdf(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
         }
@@ -63,7 +85,7 @@ impl RoughConductor {
         if wo.dot(h) <= 0.0 || wi.dot(h) <= 0.0 {
             return 0.0;
         }
-        let distr = &self.distribution;
+        let distr = &self.distribution_at(sp);
         if distr.sample_visible {
             distr.d(h) * distr.g1(wo, h) / (4.0 * wo.z)
         } else {
@@ -76,7 +98,7 @@ impl RoughConductor {
         if wo.z <= 0.0 {
             return None;
         }
-        let distr = &self.distribution;
+        let distr = &self.distribution_at(sp);
         let (m, pdf_m) = distr.sample(wo, u2);
         let wi = reflect_about(wo, m);
         if !positive(pdf_m) || wi.z <= 0.0 {

@@ -33,6 +33,9 @@ use crate::Spectrum;
 #[derive(Clone, Debug, PartialEq)]
 pub struct RoughDielectric {
     pub distribution: MicrofacetDistribution,
+    /// Spatially varying α_u, α_v (Mitsuba accepts textures); `None` when both are constant,
+    /// which `distribution` then holds.
+    pub alpha_textures: Option<Box<(Texture, Texture)>>,
     /// Relative IOR int_ior/ext_ior (≠ 1).
     pub eta: f32,
     pub specular_reflectance: Texture,
@@ -50,15 +53,33 @@ fn sign(x: f32) -> f32 {
 
 impl RoughDielectric {
     pub fn new(distribution: MicrofacetDistribution, eta: f32, specular_reflectance: Texture, specular_transmittance: Texture) -> Self {
-        RoughDielectric { distribution, eta, specular_reflectance, specular_transmittance }
+        RoughDielectric { distribution, alpha_textures: None, eta, specular_reflectance, specular_transmittance }
+    }
+
+    /// Spatially varying roughness: α_u, α_v read from textures (their `eval_1`).
+    pub fn with_alpha_textures(mut self, alpha_u: Texture, alpha_v: Texture) -> Self {
+        self.alpha_textures = Some(Box::new((alpha_u, alpha_v)));
+        self
+    }
+
+    /// The microfacet distribution at the shading point.
+    #[inline]
+    fn distribution_at(&self, sp: &ShadingPoint) -> MicrofacetDistribution {
+        match &self.alpha_textures {
+            None => self.distribution,
+            Some(t) => {
+                let d = &self.distribution;
+                MicrofacetDistribution::new(d.kind, t.0.eval_1(sp.uv), t.1.eval_1(sp.uv), d.sample_visible)
+            }
+        }
     }
 
     /// The distribution normals are drawn from for viewing cosine `cos_o`.
-    fn sampling_distribution(&self, cos_o: f32) -> MicrofacetDistribution {
-        if self.distribution.sample_visible {
-            self.distribution
+    fn sampling_distribution(distr: MicrofacetDistribution, cos_o: f32) -> MicrofacetDistribution {
+        if distr.sample_visible {
+            distr
         } else {
-            self.distribution.scaled(1.2 - 0.2 * cos_o.abs().sqrt())
+            distr.scaled(1.2 - 0.2 * cos_o.abs().sqrt())
         }
     }
 
@@ -82,7 +103,7 @@ impl RoughDielectric {
             return Spectrum::ZERO;
         }
         let Some((m, reflect, eta)) = self.half_vector(wo, wi) else { return Spectrum::ZERO };
-        let distr = &self.distribution;
+        let distr = &self.distribution_at(sp);
         let d = distr.d(m);
         let g = distr.g(wo, wi, m);
         if !positive(d * g) {
@@ -101,7 +122,7 @@ impl RoughDielectric {
     }
 
     #[inline]
-    pub fn pdf(&self, _sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
+    pub fn pdf(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
         if wo.z == 0.0 || wi.z == 0.0 {
             return 0.0;
         }
@@ -112,7 +133,7 @@ impl RoughDielectric {
         }
         let dwh_dwi = if reflect { 1.0 / (4.0 * im) } else { eta * eta * im / (om + eta * im).powi(2) };
         let f = fresnel_dielectric(om, self.eta).r;
-        let prob = self.sampling_distribution(wo.z).pdf(wo * sign(wo.z), m) * if reflect { f } else { 1.0 - f };
+        let prob = Self::sampling_distribution(self.distribution_at(sp), wo.z).pdf(wo * sign(wo.z), m) * if reflect { f } else { 1.0 - f };
         (prob * dwh_dwi).abs()
     }
 
@@ -121,14 +142,14 @@ impl RoughDielectric {
         if wo.z == 0.0 {
             return None;
         }
-        let sdistr = self.sampling_distribution(wo.z);
+        let sdistr = Self::sampling_distribution(self.distribution_at(sp), wo.z);
         let (m, pdf_m) = sdistr.sample(wo * sign(wo.z), u2);
         if !positive(pdf_m) {
             return None;
         }
         let om = wo.dot(m);
         let fr = fresnel_dielectric(om, self.eta);
-        let distr = &self.distribution;
+        let distr = &self.distribution_at(sp);
         let (wi, mut weight, pdf, eta) = if u1 <= fr.r {
             let wi = reflect_about(wo, m);
             if wi.z * wo.z <= 0.0 {

@@ -32,6 +32,10 @@ pub struct SurfaceInteraction {
     pub sh_frame: Frame,
     /// Surface (texture) coordinates.
     pub uv: Vec2,
+    /// ∂p/∂u and ∂p/∂v, world space (m per unit of u or v; not normalised). Bump and normal
+    /// maps build their perturbed frames from them, as Mitsuba's `dp_du`, `dp_dv`.
+    pub dpdu: Vec3,
+    pub dpdv: Vec3,
     /// Direction back towards the ray origin (= −ray.d), world space.
     pub wo: Vec3,
     /// Index of the shape hit.

@@ -52,7 +52,7 @@ impl DirectIntegrator {
             result += emitter.radiance(si.wo, si.n, si.uv);
         }
         let bsdf = scene.bsdf(&si);
-        let sp = ShadingPoint { uv: si.uv };
+        let sp = ShadingPoint::new(&si);
         let wo = si.to_local(si.wo);
         let (ne, nb) = (self.emitter_samples as f32, self.bsdf_samples as f32);
 

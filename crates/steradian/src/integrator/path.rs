@@ -103,7 +103,7 @@ impl PathTracer {
             }
 
             let bsdf = scene.bsdf(&si);
-            let sp = ShadingPoint { uv: si.uv };
+            let sp = ShadingPoint::new(&si);
             let wo = si.to_local(si.wo);
 
             // Six numbers per vertex, drawn in a fixed order so that with Sobol points each pair

@@ -121,6 +121,9 @@ impl Cylinder {
             n,
             sh_frame: Frame::from_normal_tangent(n, dpdu),
             uv: hit.uv,
+            dpdu,
+            // v is the local height z ∈ [0, 1]
+            dpdv: self.object_to_world.vector(Vec3::Z),
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,

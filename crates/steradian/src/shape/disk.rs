@@ -75,12 +75,16 @@ impl Disk {
         let (s, c) = (2.0 * PI * hit.uv.y).sin_cos();
         // dp/du points radially outwards (as Mitsuba); at the centre use the local x axis.
         let dpdu = self.to_world.vector(if hit.uv.x > 0.0 { Vec3::new(c, s, 0.0) } else { Vec3::X });
+        // v = φ/2π: ∂p/∂v = 2π·r·(−sin φ, cos φ, 0)
+        let dpdv = self.to_world.vector(Vec3::new(-s, c, 0.0) * (2.0 * PI * hit.uv.x));
         SurfaceInteraction {
             p: self.to_world.point(Self::local(hit.uv)),
             t: hit.t,
             n: self.n,
             sh_frame: Frame::from_normal_tangent(self.n, dpdu),
             uv: hit.uv,
+            dpdu,
+            dpdv,
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,

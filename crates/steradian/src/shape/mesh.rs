@@ -187,20 +187,24 @@ impl Mesh {
         }
         let e1 = p1 - p0;
         let e2 = p2 - p0;
-        let dpdu = match &self.uvs {
+        // ∂p/∂u, ∂p/∂v from the uv parametrisation of the triangle (solving
+        // e1 = Δu1·dpdu + Δv1·dpdv, e2 = Δu2·dpdu + Δv2·dpdv); without uvs (or with degenerate
+        // ones) the barycentrics (b1, b2) are the parameters: dpdu = e1, dpdv = e2.
+        let (dpdu, dpdv) = match &self.uvs {
             Some(uvs) => {
                 let (uv0, uv1, uv2) = (uvs[i0 as usize], uvs[i1 as usize], uvs[i2 as usize]);
                 let d1 = uv1 - uv0;
                 let d2 = uv2 - uv0;
                 let det = d1.x * d2.y - d1.y * d2.x;
                 let dpdu = (e1 * d2.y - e2 * d1.y) / det;
-                if det != 0.0 && dpdu.is_finite() {
-                    dpdu
+                let dpdv = (e2 * d1.x - e1 * d2.x) / det;
+                if det != 0.0 && dpdu.is_finite() && dpdv.is_finite() {
+                    (dpdu, dpdv)
                 } else {
-                    e1
+                    (e1, e2)
                 }
             }
-            None => e1,
+            None => (e1, e2),
         };
         let ns = match &self.normals {
             Some(ns) => {
@@ -219,6 +223,8 @@ impl Mesh {
             n,
             sh_frame: Frame::from_normal_tangent(ns, dpdu),
             uv: self.uv_at(prim, hit.uv),
+            dpdu,
+            dpdv,
             wo: -ray.d,
             shape: hit.shape,
             prim,

@@ -26,6 +26,7 @@ pub struct Rectangle {
     to_world: Transform,
     n: Vec3,
     dpdu: Vec3,
+    dpdv: Vec3,
     area: f32,
     /// The rectangle's own frame, when its edges are perpendicular (a true rectangle).
     frame: Option<RectangleFrame>,
@@ -43,7 +44,7 @@ impl Rectangle {
         let corner = to_world.point(Vec3::new(-1.0, -1.0, 0.0));
         let perpendicular = dpdu.dot(dpdv).abs() <= 1e-5 * dpdu.length() * dpdv.length();
         let frame = perpendicular.then(|| RectangleFrame::new(corner, dpdu, dpdv));
-        Rectangle { to_world: *to_world, n, dpdu, area: dpdu.cross(dpdv).length(), frame }
+        Rectangle { to_world: *to_world, n, dpdu, dpdv, area: dpdu.cross(dpdv).length(), frame }
     }
 
     /// World normal of the front side.
@@ -87,6 +88,8 @@ impl Rectangle {
             n: self.n,
             sh_frame: Frame::from_normal_tangent(self.n, self.dpdu),
             uv: hit.uv,
+            dpdu: self.dpdu,
+            dpdv: self.dpdv,
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,

@@ -125,14 +125,21 @@ impl Sphere {
         // Project the hit onto the surface to remove the error of o + t·d.
         let p = self.center + (ray.at(hit.t) - self.center).normalize() * self.radius;
         let n = self.normal_at(p);
+        // Mitsuba's parametrisation: u = φ/2π, v = θ/π on the unit sphere of the local frame,
+        // so ∂p/∂u = 2π·(−y, x, 0) and ∂p/∂v = π·(z cos φ, z sin φ, −sin θ).
         let l = self.object_to_world.inv.transform_point3(p);
-        let dpdu = self.object_to_world.vector(Vec3::new(-l.y, l.x, 0.0));
+        let dpdu = self.object_to_world.vector(Vec3::new(-l.y, l.x, 0.0) * (2.0 * PI));
+        let rd = (l.x * l.x + l.y * l.y).sqrt();
+        let (cos_phi, sin_phi) = if rd > 0.0 { (l.x / rd, l.y / rd) } else { (1.0, 0.0) };
+        let dpdv = self.object_to_world.vector(Vec3::new(l.z * cos_phi, l.z * sin_phi, -rd) * PI);
         SurfaceInteraction {
             p,
             t: hit.t,
             n,
             sh_frame: Frame::from_normal_tangent(n, dpdu),
             uv: self.uv_at(p),
+            dpdu,
+            dpdv,
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,

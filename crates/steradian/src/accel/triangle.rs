@@ -22,7 +22,8 @@ use crate::geometry::Ray;
 pub(super) struct WatertightRay {
     /// Axis permutation: `k[2]` is the axis of the largest |d| component.
     pub k: [usize; 3],
-    /// Shear constants `(d[kx]/d[kz], d[ky]/d[kz], 1/d[kz])`.
+    /// Shear constants `(d[kx]/d[kz], d[ky]/d[kz], 1/d[kz])` (the first two as products with
+    /// `1/d[kz]`).
     pub s: [f32; 3],
 }
 
@@ -42,7 +43,9 @@ impl WatertightRay {
         if d[kz] < 0.0 {
             std::mem::swap(&mut kx, &mut ky);
         }
-        WatertightRay { k: [kx, ky, kz], s: [d[kx] / d[kz], d[ky] / d[kz], 1.0 / d[kz]] }
+        // one division per ray instead of three
+        let sz = 1.0 / d[kz];
+        WatertightRay { k: [kx, ky, kz], s: [d[kx] * sz, d[ky] * sz, sz] }
     }
 }
 

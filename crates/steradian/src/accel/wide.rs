@@ -193,6 +193,8 @@ impl Accel {
         let mut c = Collapse { shapes, prims: &build, accel: &mut accel };
         let root = c.emit(&tree);
         accel.root = root;
+        accel.nodes = on_huge_pages(std::mem::take(&mut accel.nodes));
+        accel.tris = on_huge_pages(std::mem::take(&mut accel.tris));
         accel
     }
 
@@ -218,6 +220,31 @@ impl Accel {
                 + self.others.len() * std::mem::size_of::<PrimRef>(),
         }
     }
+}
+
+/// Moves a large array to memory the kernel backs with 2 MiB pages where it can (Linux
+/// transparent huge pages in `madvise` mode; Embree does the same): random accesses to a
+/// BVH of tens of MB otherwise miss the TLB on almost every node.
+fn on_huge_pages<T: Copy>(v: Vec<T>) -> Vec<T> {
+    const HUGE: usize = 2 << 20;
+    let bytes = std::mem::size_of_val(v.as_slice());
+    if bytes < 2 * HUGE {
+        return v;
+    }
+    let mut out: Vec<T> = Vec::with_capacity(v.len());
+    #[cfg(target_os = "linux")]
+    {
+        // the 2 MiB-aligned part of the (still untouched) allocation
+        let start = (out.as_mut_ptr() as usize).next_multiple_of(HUGE);
+        let end = (out.as_mut_ptr() as usize + bytes) / HUGE * HUGE;
+        if end > start {
+            // SAFETY: madvise only gives the kernel a paging hint for whole pages inside our
+            // own allocation; a failure (e.g. THP disabled) leaves ordinary pages.
+            unsafe { libc::madvise(start as *mut libc::c_void, end - start, libc::MADV_HUGEPAGE) };
+        }
+    }
+    out.extend_from_slice(&v);
+    out
 }
 
 struct Collapse<'a> {

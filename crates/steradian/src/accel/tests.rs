@@ -2,7 +2,9 @@
 
 use glam::{Vec2, Vec3};
 
-use super::Accel;
+use super::wide::{leaf_range, ANALYTIC, EMPTY_CHILD, LEAF, WIDTH};
+use super::{Accel, Isa};
+use crate::geometry::Aabb;
 use crate::geometry::{Ray, Transform};
 use crate::sampling::Pcg32;
 use crate::shape::{cube, Cylinder, Disk, Mesh, Rectangle, Shape, Sphere};
@@ -63,42 +65,79 @@ fn scene(seed: u64) -> Vec<Shape> {
     shapes
 }
 
+/// The kernel sets this CPU can run (scalar always; AVX2 where present).
+fn isas() -> Vec<Isa> {
+    [Isa::Scalar, Isa::Avx2].into_iter().filter(|i| i.is_supported()).collect()
+}
+
 #[test]
 fn closest_hit_and_occlusion_match_brute_force() {
     let shapes = scene(3);
-    let accel = Accel::build(&shapes);
-    let b = accel.bounds();
-    assert!(b.min.cmple(Vec3::splat(-10.0)).all() && b.max.cmpge(Vec3::splat(10.0)).all());
-    let mut r = Pcg32::new(99, 5);
-    let (mut hits, mut occl) = (0, 0);
-    for i in 0..10_000 {
-        let o = v3(&mut r) * 30.0 - Vec3::splat(15.0);
-        let mut d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(r.next_f32(), r.next_f32()));
-        if i % 10 == 0 {
-            // axis-aligned directions exercise the slab test's infinities
-            d = [Vec3::X, -Vec3::Y, Vec3::Z][i % 3];
-        }
-        let t_max = if i % 3 == 0 { f32::INFINITY } else { 30.0 * r.next_f32() };
-        let ray = Ray::new(o, d, t_max);
-        let got = accel.intersect(&shapes, &ray);
-        let want = brute_intersect(&shapes, &ray);
-        match (got, want) {
-            (None, None) => {}
-            (Some(h), Some((t, s, p))) => {
-                hits += 1;
-                assert!((h.t - t).abs() <= 1e-5 * t, "ray {i}: t {} vs {t}", h.t);
-                assert_eq!((h.shape, h.prim), (s, p), "ray {i}");
-                assert_eq!(shapes[s as usize].intersect_prim(p, &ray).unwrap().1, h.uv);
+    for isa in isas() {
+        let accel = Accel::build_with_isa(&shapes, isa);
+        assert_eq!(accel.isa(), isa);
+        let b = accel.bounds();
+        assert!(b.min.cmple(Vec3::splat(-10.0)).all() && b.max.cmpge(Vec3::splat(10.0)).all());
+        let mut r = Pcg32::new(99, 5);
+        let (mut hits, mut occl) = (0, 0);
+        for i in 0..10_000 {
+            let o = v3(&mut r) * 30.0 - Vec3::splat(15.0);
+            let mut d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(r.next_f32(), r.next_f32()));
+            if i % 10 == 0 {
+                // axis-aligned directions exercise the slab test's infinities
+                d = [Vec3::X, -Vec3::Y, Vec3::Z][i % 3];
             }
-            (g, w) => panic!("ray {i}: bvh {g:?}, brute force {w:?}"),
+            let t_max = if i % 3 == 0 { f32::INFINITY } else { 30.0 * r.next_f32() };
+            let ray = Ray::new(o, d, t_max);
+            let got = accel.intersect(&shapes, &ray);
+            let want = brute_intersect(&shapes, &ray);
+            match (got, want) {
+                (None, None) => {}
+                (Some(h), Some((t, s, p))) => {
+                    hits += 1;
+                    // the same triangle test in SIMD and scalar: identical distance and barycentrics
+                    assert_eq!(h.t, t, "{isa:?} ray {i}");
+                    assert_eq!((h.shape, h.prim), (s, p), "{isa:?} ray {i}");
+                    assert_eq!(shapes[s as usize].intersect_prim(p, &ray).unwrap().1, h.uv, "{isa:?} ray {i}");
+                }
+                (g, w) => panic!("{isa:?} ray {i}: bvh {g:?}, brute force {w:?}"),
+            }
+            let occluded = accel.occluded(&shapes, &ray);
+            assert_eq!(occluded, want.is_some(), "{isa:?} ray {i}");
+            occl += occluded as u32;
+            // a ray interval (t_min, t_max): the hit beyond t_min
+            if let Some((t, _, _)) = want {
+                let t_min = 0.5 * t;
+                let far = accel.intersect_from(&shapes, &ray, t_min).expect("the closest hit lies beyond t_min");
+                assert_eq!(far.t, t, "{isa:?} ray {i}");
+                assert!(accel.occluded_from(&shapes, &ray, t_min));
+            }
         }
-        let occluded = accel.occluded(&shapes, &ray);
-        assert_eq!(occluded, want.is_some(), "ray {i}");
-        occl += occluded as u32;
+        // the test must exercise both outcomes
+        assert!(hits > 1000 && hits < 9000, "{hits} hits");
+        assert!(occl > 1000);
     }
-    // the test must exercise both outcomes
-    assert!(hits > 1000 && hits < 9000, "{hits} hits");
-    assert!(occl > 1000);
+}
+
+/// Rays starting inside a closed triangle mesh (a box) with an interval that
+/// excludes the near wall must find the far wall: tests t_min on triangles against brute force.
+#[test]
+fn intervals_on_a_closed_mesh() {
+    let shapes = vec![Shape::Mesh(cube(&Transform::scale(Vec3::splat(2.0)).unwrap(), false))];
+    let mut r = Pcg32::new(5, 7);
+    for isa in isas() {
+        let accel = Accel::build_with_isa(&shapes, isa);
+        for _ in 0..1000 {
+            let o = v3(&mut r) * 2.0 - Vec3::ONE;
+            let d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(r.next_f32(), r.next_f32()));
+            let ray = Ray::infinite(o, d);
+            let h = accel.intersect(&shapes, &ray).expect("inside a closed box");
+            assert_eq!(h.t, brute_intersect(&shapes, &ray).unwrap().0);
+            // beyond the exit point nothing is left
+            assert!(accel.intersect_from(&shapes, &ray, h.t * 1.001).is_none());
+            assert!(!accel.occluded_from(&shapes, &ray, h.t * 1.001));
+        }
+    }
 }
 
 #[test]
@@ -106,49 +145,89 @@ fn layout_is_compact_and_complete() {
     let shapes = scene(4);
     let accel = Accel::build(&shapes);
     let total: u32 = shapes.iter().map(|s| s.prim_count()).sum();
-    // all non-degenerate primitives are referenced exactly once
+    // every leaf is reached from the root once; every non-degenerate primitive is referenced
+    // exactly once; children lie inside their parent's box
     let mut seen = std::collections::HashSet::new();
-    for p in &accel.prims {
-        assert!(seen.insert((p.shape, p.prim)));
-    }
-    assert!(accel.prims.len() as u32 <= total && accel.prims.len() as u32 >= total - 40);
-    // leaves cover every primitive once, children are adjacent and inside their parent
-    let mut covered = vec![0u8; accel.prims.len()];
-    for n in &accel.nodes {
-        if n.count > 0 {
-            for c in &mut covered[n.offset as usize..(n.offset + n.count) as usize] {
-                *c += 1;
+    let mut visited_nodes = 0;
+    let mut todo = vec![(accel.root, accel.bounds())];
+    while let Some((code, parent)) = todo.pop() {
+        if code & LEAF == 0 {
+            visited_nodes += 1;
+            let n = &accel.nodes[code as usize];
+            for lane in 0..WIDTH {
+                if n.child[lane] == EMPTY_CHILD {
+                    assert!(n.bounds[0][lane] > n.bounds[3][lane], "unused lanes hold the empty box");
+                    continue;
+                }
+                let b = Aabb::new(
+                    Vec3::new(n.bounds[0][lane], n.bounds[1][lane], n.bounds[2][lane]),
+                    Vec3::new(n.bounds[3][lane], n.bounds[4][lane], n.bounds[5][lane]),
+                );
+                assert!(b.min.cmpge(parent.min).all() && b.max.cmple(parent.max).all());
+                todo.push((n.child[lane], b));
+            }
+        } else if code & ANALYTIC == 0 {
+            let packets = &accel.tris[leaf_range(code)];
+            assert!(!packets.is_empty() && packets.len() <= 2);
+            for (p, ids) in packets.iter().zip(&accel.tri_ids[leaf_range(code)]) {
+                for lane in 0..4 {
+                    if ids.shape[lane] == u32::MAX {
+                        assert!(p.v.iter().flatten().all(|axis| axis[lane].is_nan()), "empty lanes never hit");
+                        continue;
+                    }
+                    assert!(seen.insert((ids.shape[lane], ids.prim[lane])));
+                    // the packet holds the triangle's vertices, inside the leaf box
+                    let Shape::Mesh(m) = &shapes[ids.shape[lane] as usize] else { panic!("triangle of a non-mesh") };
+                    for (k, v) in m.triangle(ids.prim[lane]).iter().enumerate() {
+                        assert_eq!([p.v[k][0][lane], p.v[k][1][lane], p.v[k][2][lane]], v.to_array());
+                        assert!(v.cmpge(parent.min).all() && v.cmple(parent.max).all());
+                    }
+                }
             }
         } else {
-            for c in [n.offset as usize, n.offset as usize + 1] {
-                let ch = &accel.nodes[c];
-                for a in 0..3 {
-                    assert!(ch.min[a] >= n.min[a] && ch.max[a] <= n.max[a]);
-                }
+            for r in &accel.others[leaf_range(code)] {
+                assert!(!matches!(shapes[r.shape as usize], Shape::Mesh(_)));
+                assert!(seen.insert((r.shape, r.prim)));
             }
         }
     }
-    assert!(covered.iter().all(|&c| c == 1));
+    assert_eq!(visited_nodes, accel.nodes.len());
+    assert!(seen.len() as u32 <= total && seen.len() as u32 >= total - 40);
+    let stats = accel.stats();
+    assert_eq!(stats.triangles + stats.analytic_prims, seen.len());
+    // packets are mostly full
+    assert!(stats.triangles as f32 / (4 * stats.triangle_packets) as f32 > 0.6, "{stats:?}");
 }
 
 #[test]
 fn empty_scenes_and_single_shapes() {
-    let accel = Accel::build(&[]);
-    let ray = Ray::infinite(Vec3::ZERO, Vec3::Z);
-    assert!(accel.intersect(&[], &ray).is_none());
-    assert!(!accel.occluded(&[], &ray));
-    assert!(accel.bounds().is_empty());
-    let shapes = vec![Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, 5.0), 1.0, &Transform::IDENTITY, false))];
-    let accel = Accel::build(&shapes);
-    let h = accel.intersect(&shapes, &ray).unwrap();
-    assert!((h.t - 4.0).abs() < 1e-5 && h.shape == 0 && h.prim == 0);
-    assert!(accel.occluded(&shapes, &ray));
-    assert!(!accel.occluded(&shapes, &Ray::new(Vec3::ZERO, Vec3::Z, 3.9)));
-    // many identical triangles (coincident centroids) still build and trace
-    let pos = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
-    let idx = vec![[0, 1, 2]; 100];
-    let shapes = vec![Shape::Mesh(Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, false).unwrap())];
-    let accel = Accel::build(&shapes);
-    let h = accel.intersect(&shapes, &Ray::infinite(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z)).unwrap();
-    assert!((h.t - 1.0).abs() < 1e-6);
+    for isa in isas() {
+        let accel = Accel::build_with_isa(&[], isa);
+        let ray = Ray::infinite(Vec3::ZERO, Vec3::Z);
+        assert!(accel.intersect(&[], &ray).is_none());
+        assert!(!accel.occluded(&[], &ray));
+        assert!(accel.bounds().is_empty());
+        let shapes = vec![Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, 5.0), 1.0, &Transform::IDENTITY, false))];
+        let accel = Accel::build_with_isa(&shapes, isa);
+        let h = accel.intersect(&shapes, &ray).unwrap();
+        assert!((h.t - 4.0).abs() < 1e-5 && h.shape == 0 && h.prim == 0);
+        assert!(accel.occluded(&shapes, &ray));
+        assert!(!accel.occluded(&shapes, &Ray::new(Vec3::ZERO, Vec3::Z, 3.9)));
+        // many identical triangles (coincident centroids) still build and trace
+        let pos = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
+        let idx = vec![[0, 1, 2]; 100];
+        let shapes = vec![Shape::Mesh(Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, false).unwrap())];
+        let accel = Accel::build_with_isa(&shapes, isa);
+        let h = accel.intersect(&shapes, &Ray::infinite(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z)).unwrap();
+        assert!((h.t - 1.0).abs() < 1e-6);
+        // many instances of analytic shapes: a 20 × 20 × 5 grid of spheres
+        let shapes: Vec<Shape> = (0..2000)
+            .map(|i| Shape::Sphere(Sphere::new(Vec3::new((i % 20) as f32, (i / 20 % 20) as f32, (i / 400) as f32 * 3.0), 0.3, &Transform::IDENTITY, false)))
+            .collect();
+        let accel = Accel::build_with_isa(&shapes, isa);
+        assert_eq!(accel.stats().analytic_prims, 2000);
+        let h = accel.intersect(&shapes, &Ray::infinite(Vec3::new(7.0, 4.0, -10.0), Vec3::Z)).unwrap();
+        assert_eq!(h.shape, 7 + 4 * 20);
+        assert!((h.t - 9.7).abs() < 1e-4);
+    }
 }

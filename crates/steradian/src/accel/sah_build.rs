@@ -1,0 +1,227 @@
+//! Binned-SAH build of a binary BVH (Wald, "On fast Construction of SAH-based Bounding Volume
+//! Hierarchies", 2007), in parallel: subtrees are built with `rayon::join`, and the binning of
+//! large nodes is split over threads too.
+//!
+//! The binary tree is only an intermediate: `wide.rs` collapses it into the 8-wide BVH that is
+//! traversed. The SAH cost counts triangles in packets of [`TRI_BLOCK`] (a leaf of 5 triangles
+//! costs as much as one of 8, they are tested 4 at a time), as Embree does.
+
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::geometry::Aabb;
+use crate::shape::is_positive;
+
+/// Number of SAH bins per axis.
+const BINS: usize = 32;
+/// Largest leaf, in primitives.
+pub(super) const MAX_LEAF: usize = 8;
+/// Triangles are intersected 4 at a time.
+pub(super) const TRI_BLOCK: usize = 4;
+/// Cost of one node visit relative to one triangle-packet test.
+const TRAVERSAL_COST: f32 = 1.0;
+/// Beyond this depth nodes are split at the object median: the depth stays bounded (and with it
+/// the traversal stack) whatever the input.
+pub(super) const SAH_MAX_DEPTH: usize = 40;
+/// Nodes with more primitives than this are built in parallel.
+const PARALLEL_MIN: usize = 4096;
+/// Nodes with more primitives than this also bin in parallel.
+const PARALLEL_BINNING_MIN: usize = 65536;
+
+/// A primitive as the builder sees it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct BuildPrim {
+    pub bounds: Aabb,
+    pub centroid: Vec3,
+    pub shape: u32,
+    pub prim: u32,
+    /// Triangles are packed 4 to a leaf packet; other primitives are tested one by one.
+    pub is_triangle: bool,
+}
+
+/// A node of the binary tree. Leaves cover `prims[start..start + count]`, all of one kind.
+#[derive(Debug)]
+pub(super) enum BinaryNode {
+    Leaf { bounds: Aabb, start: usize, count: usize, triangles: bool },
+    Inner { bounds: Aabb, children: Box<[BinaryNode; 2]> },
+}
+
+impl BinaryNode {
+    pub fn bounds(&self) -> &Aabb {
+        match self {
+            BinaryNode::Leaf { bounds, .. } | BinaryNode::Inner { bounds, .. } => bounds,
+        }
+    }
+}
+
+/// Builds the tree over `prims`, reordering them so that every leaf is a contiguous range.
+pub(super) fn build(prims: &mut [BuildPrim]) -> BinaryNode {
+    build_node(prims, 0, 0)
+}
+
+fn leaf_cost(n: usize, triangles: bool) -> f32 {
+    if triangles {
+        n.div_ceil(TRI_BLOCK) as f32
+    } else {
+        n as f32
+    }
+}
+
+#[derive(Clone, Copy)]
+struct Bin {
+    bounds: Aabb,
+    count: usize,
+    /// Non-triangle primitives in the bin (they cost one test each).
+    other: usize,
+}
+
+const EMPTY_BIN: Bin = Bin { bounds: Aabb::EMPTY, count: 0, other: 0 };
+
+type Bins = [[Bin; BINS]; 3];
+
+fn bin_index(c: f32, min: f32, scale: f32) -> usize {
+    (((c - min) * scale) as usize).min(BINS - 1)
+}
+
+fn bin_prims(items: &[BuildPrim], cmin: Vec3, scale: Vec3) -> Box<Bins> {
+    let mut bins = Box::new([[EMPTY_BIN; BINS]; 3]);
+    for p in items {
+        for axis in 0..3 {
+            let b = &mut bins[axis][bin_index(p.centroid[axis], cmin[axis], scale[axis])];
+            b.bounds = b.bounds.union(&p.bounds);
+            b.count += 1;
+            b.other += !p.is_triangle as usize;
+        }
+    }
+    bins
+}
+
+fn merge_bins(mut a: Box<Bins>, b: Box<Bins>) -> Box<Bins> {
+    for axis in 0..3 {
+        for i in 0..BINS {
+            let (x, y) = (&mut a[axis][i], &b[axis][i]);
+            x.bounds = x.bounds.union(&y.bounds);
+            x.count += y.count;
+            x.other += y.other;
+        }
+    }
+    a
+}
+
+/// Cost of `n` primitives of which `other` are not triangles.
+fn block_cost(n: usize, other: usize) -> f32 {
+    (n - other).div_ceil(TRI_BLOCK) as f32 + other as f32
+}
+
+fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNode {
+    let mut bounds = Aabb::EMPTY;
+    let mut cbounds = Aabb::EMPTY;
+    let mut triangles = 0usize;
+    for p in prims.iter() {
+        bounds = bounds.union(&p.bounds);
+        cbounds.grow(p.centroid);
+        triangles += p.is_triangle as usize;
+    }
+    let count = prims.len();
+    let pure = triangles == count || triangles == 0;
+    let leaf = || BinaryNode::Leaf { bounds, start: offset, count, triangles: triangles == count };
+    if count == 1 {
+        return leaf();
+    }
+    let mid = match (depth < SAH_MAX_DEPTH).then(|| sah_split(prims, &bounds, &cbounds, count - triangles)).flatten() {
+        Some(mid) => mid,
+        None if count <= MAX_LEAF && pure => return leaf(),
+        None if count <= MAX_LEAF => {
+            // the SAH wants a leaf, but leaves hold one kind: triangles first, then the rest
+            let mut i = 0;
+            for j in 0..count {
+                if prims[j].is_triangle {
+                    prims.swap(i, j);
+                    i += 1;
+                }
+            }
+            i
+        }
+        None => {
+            // the SAH prefers a leaf (or all centroids coincide) but it would be too big, or
+            // the tree is too deep: split at the median along the widest centroid axis
+            let axis = cbounds.max_axis();
+            let half = count / 2;
+            prims.select_nth_unstable_by(half, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
+            half
+        }
+    };
+    let (left, right) = prims.split_at_mut(mid);
+    let (l, r) = if count >= PARALLEL_MIN {
+        rayon::join(|| build_node(left, offset, depth + 1), || build_node(right, offset + mid, depth + 1))
+    } else {
+        (build_node(left, offset, depth + 1), build_node(right, offset + mid, depth + 1))
+    };
+    BinaryNode::Inner { bounds, children: Box::new([l, r]) }
+}
+
+/// Binned SAH: partitions `items` and returns the size of the left part, or `None` when a leaf
+/// is cheaper (or no bin boundary separates the centroids).
+fn sah_split(items: &mut [BuildPrim], bounds: &Aabb, cbounds: &Aabb, other: usize) -> Option<usize> {
+    let count = items.len();
+    let extent = cbounds.extent();
+    let scale = Vec3::from_array(std::array::from_fn(|a| if is_positive(extent[a]) { BINS as f32 / extent[a] } else { 0.0 }));
+    let bins = if count >= PARALLEL_BINNING_MIN {
+        items
+            .par_chunks(PARALLEL_BINNING_MIN / 4)
+            .map(|c| bin_prims(c, cbounds.min, scale))
+            .reduce_with(merge_bins)
+            .expect("a non-empty node has a chunk")
+    } else {
+        bin_prims(items, cbounds.min, scale)
+    };
+    let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, last bin on the left)
+    for axis in 0..3 {
+        if scale[axis] == 0.0 {
+            continue;
+        }
+        let bins = &bins[axis];
+        // sweep from the right for suffix areas and costs
+        let mut right_cost = [0.0f32; BINS];
+        let mut acc = Aabb::EMPTY;
+        let (mut n, mut o) = (0, 0);
+        for i in (1..BINS).rev() {
+            acc = acc.union(&bins[i].bounds);
+            n += bins[i].count;
+            o += bins[i].other;
+            right_cost[i] = if n > 0 { acc.surface_area() * block_cost(n, o) } else { f32::NAN };
+        }
+        let mut acc = Aabb::EMPTY;
+        let (mut n, mut o) = (0, 0);
+        for i in 0..BINS - 1 {
+            acc = acc.union(&bins[i].bounds);
+            n += bins[i].count;
+            o += bins[i].other;
+            if n == 0 || n == count {
+                continue;
+            }
+            let cost = acc.surface_area() * block_cost(n, o) + right_cost[i + 1];
+            if best.is_none_or(|(c, _, _)| cost < c) {
+                best = Some((cost, axis, i));
+            }
+        }
+    }
+    let (cost, axis, split) = best?;
+    let area = bounds.surface_area();
+    let split_cost = if area > 0.0 { TRAVERSAL_COST + cost / area } else { TRAVERSAL_COST };
+    let pure = other == 0 || other == count;
+    if count <= MAX_LEAF && pure && split_cost >= leaf_cost(count, other == 0) {
+        return None;
+    }
+    let (min, s) = (cbounds.min[axis], scale[axis]);
+    let in_left = |p: &BuildPrim| bin_index(p.centroid[axis], min, s) <= split;
+    // in-place partition
+    let mut i = 0;
+    for j in 0..count {
+        if in_left(&items[j]) {
+            items.swap(i, j);
+            i += 1;
+        }
+    }
+    (i > 0 && i < count).then_some(i)
+}

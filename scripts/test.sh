@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Runs every test of the project: the Rust workspace, then the Python package's pytest suite
+# against a fresh `pip install .` in a virtual environment (.venv-test/, made when missing).
+# Needs only a Rust toolchain (rustup) and Python >= 3.9 with venv; PyPI for maturin, numpy,
+# pytest and mypy. This is the README's test command and what .ci/run runs.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+if ! command -v cargo >/dev/null 2>&1; then
+    # Rust comes from rustup on every machine of this project; make it visible if PATH lacks it.
+    export PATH="$HOME/.cargo/bin:$PATH"
+fi
+PYTHON="${PYTHON:-python3}"
+VENV=.venv-test
+
+echo "== cargo test --workspace --locked"
+cargo test --workspace --locked
+
+echo "== the steradian command, for the Python-vs-CLI comparison"
+cargo build --release --locked -p steradian-cli
+export STERADIAN_CLI="$PWD/target/release/steradian"
+
+echo "== Python package: $VENV, pip install ."
+if [ ! -x "$VENV/bin/python" ]; then
+    "$PYTHON" -m venv "$VENV"
+fi
+export PATH="$PWD/$VENV/bin:$PATH"   # maturin's command must be on PATH for the build
+python -m pip install --quiet --disable-pip-version-check "maturin>=1.5,<2" numpy pytest mypy
+start=$SECONDS
+# the build tools are in the venv already: no isolated build environment to download
+python -m pip install --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps .
+echo "pip install . took $((SECONDS - start)) s"
+
+echo "== pytest python/tests"
+# run from python/tests' parent with the installed package, never the source tree's copy
+python -m pytest python/tests -p no:cacheprovider -ra

@@ -21,7 +21,17 @@ export STERADIAN_CLI="$PWD/target/release/steradian"
 
 echo "== Python package: $VENV, pip install ."
 if [ ! -x "$VENV/bin/python" ]; then
-    "$PYTHON" -m venv "$VENV"
+    if ! "$PYTHON" -m venv "$VENV"; then
+        # Debian's own Python ships venv separately (python3-venv)
+        rm -rf "$VENV"
+        if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+            apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3-venv
+            "$PYTHON" -m venv "$VENV"
+        else
+            echo "error: '$PYTHON -m venv' failed: install Python's venv module (Debian: python3-venv)" >&2
+            exit 1
+        fi
+    fi
 fi
 export PATH="$PWD/$VENV/bin:$PATH"   # maturin's command must be on PATH for the build
 python -m pip install --quiet --disable-pip-version-check "maturin>=1.5,<2" numpy pytest mypy

@@ -8,8 +8,12 @@ use steradian::film::Image;
 
 /// A float32 array (H, W, 3) holding a copy of `image` (row 0 = top).
 pub fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyAny>> {
-    let bytes: Vec<u8> = image.data.iter().flat_map(|v| v.to_ne_bytes()).collect();
-    let buffer = PyByteArray::new(py, &bytes);
+    let buffer = PyByteArray::new_with(py, image.data.len() * 4, |bytes| {
+        for (b, v) in bytes.chunks_exact_mut(4).zip(&image.data) {
+            b.copy_from_slice(&v.to_ne_bytes());
+        }
+        Ok(())
+    })?;
     let np = py.import("numpy")?;
     let flat = np.call_method1("frombuffer", (buffer, np.getattr("float32")?))?;
     flat.call_method1("reshape", ((image.height as usize, image.width as usize, 3usize),))

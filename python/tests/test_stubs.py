@@ -57,6 +57,8 @@ def test_every_stub_function_signature_matches_inspect():
 
 
 TYPED_USE = """
+from typing import Optional
+
 import numpy as np
 import numpy.typing as npt
 import steradian
@@ -68,11 +70,11 @@ m: steradian.Measurement = scene.measure(progress=lambda done, total: None)
 value: npt.NDArray[np.float64] = m.value
 steradian.write_exr("x.exr", image)
 omega: float = cone_solid_angle(0.5) + steradian.radiometry.sphere_solid_angle(1.0, 2.0)
-size: tuple[int, int] = scene.film_size(0)
+size: "tuple[int, int]" = scene.film_size(0)
 try:
     steradian.load_string("<scene/>")
 except steradian.SceneError as e:
-    line: int | None = e.line
+    line: Optional[int] = e.line
 """
 
 

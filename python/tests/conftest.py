@@ -13,9 +13,9 @@ DISK_METER = SCENES / "validation" / "disk_on_axis_irradiance.xml"
 
 @pytest.fixture(scope="session")
 def cli() -> Path:
-    """The `steradian` command: $STERADIAN_CLI (scripts/test.sh builds it and sets it), else
-    target/release/steradian. Missing is a failure, never a skip: the Python-vs-CLI tests are
-    part of the acceptance criteria."""
+    """The `steradian` command: $STERADIAN_CLI (scripts/test.sh sets it to the binary that
+    `cargo test` built), else target/release/steradian. Missing is a failure, never a skip: the
+    Python-vs-CLI tests are part of the acceptance criteria."""
     env = os.environ.get("STERADIAN_CLI")
     path = Path(env) if env else REPO / "target" / "release" / "steradian"
     if not path.is_file():

@@ -8,7 +8,7 @@ use std::time::Duration;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use steradian::film::{write_exr, write_png};
-use steradian::film::{false_color_png, Image};
+use steradian::film::false_color_png;
 use steradian::integrator::{render, PixelQuantity, Progress, RenderOptions};
 use steradian::sampling::SamplerKind;
 
@@ -139,10 +139,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         None => steradian_mitsuba::load_string(BUILTIN_SCENE, Path::new(&format!("<built-in {BUILTIN_NAME}.xml>")), Path::new("."), &defines)?,
     };
     let sensor = match &args.sensor {
-        Some(id) => Some(scene.sensor_index(id).ok_or_else(|| {
-            let ids: Vec<&str> = scene.sensors.iter().map(|s| s.id.as_str()).filter(|s| !s.is_empty()).collect();
-            format!("the scene has no sensor with id '{id}' (sensor ids: {})", if ids.is_empty() { "none".into() } else { ids.join(", ") })
-        })?),
+        Some(id) => Some(scene.find_sensor(id)?),
         None => None,
     };
 
@@ -195,8 +192,8 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let mut image = out.film.develop();
     let mut error = out.film.develop_stderr();
     if args.quantity == Quantity::Illuminance {
-        image = to_illuminance(&image);
-        error = to_illuminance(&error);
+        image = image.to_illuminance();
+        error = error.to_illuminance();
     }
     write_exr(&output, &image)?;
     let png = output.with_extension("png");
@@ -225,16 +222,4 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     );
     println!("wrote {} and {}", output.display(), png.display());
     Ok(())
-}
-
-/// Illuminance (lx) from irradiance (W/m²): 683 lm/W × the luminance-weighted RGB, in all
-/// three channels. The standard error is mapped the same way, which treats the channels' errors
-/// as fully correlated (they come from the same light paths): an upper bound.
-fn to_illuminance(image: &Image) -> Image {
-    let mut out = image.clone();
-    for px in out.data.chunks_exact_mut(3) {
-        let y = 683.0 * steradian::spectrum::luminance(steradian::Vec3::new(px[0], px[1], px[2]));
-        px.fill(y);
-    }
-    out
 }

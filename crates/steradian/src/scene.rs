@@ -172,5 +172,13 @@ impl Scene {
     pub fn sensor_index(&self, id: &str) -> Option<usize> {
         self.sensors.iter().position(|s| s.id == id)
     }
+
+    /// Index of the sensor with the given `id`, or an error that lists the ids there are.
+    pub fn find_sensor(&self, id: &str) -> Result<usize, String> {
+        self.sensor_index(id).ok_or_else(|| {
+            let ids: Vec<&str> = self.sensors.iter().map(|s| s.id.as_str()).filter(|s| !s.is_empty()).collect();
+            format!("the scene has no sensor with id '{id}' (sensor ids: {})", if ids.is_empty() { "none".into() } else { ids.join(", ") })
+        })
+    }
 }
 

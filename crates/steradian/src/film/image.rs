@@ -70,6 +70,18 @@ impl Image {
         self.data[i + 2] = value.z;
     }
 
+    /// Illuminance (lx) from an irradiance image (W/m²): 683 lm/W × the luminance-weighted RGB,
+    /// in all three channels. Applied to a standard-error image it treats the channels' errors
+    /// as fully correlated (they come from the same light paths): an upper bound.
+    pub fn to_illuminance(&self) -> Image {
+        let mut out = self.clone();
+        for px in out.data.chunks_exact_mut(3) {
+            let y = 683.0 * crate::spectrum::luminance(Spectrum::new(px[0], px[1], px[2]));
+            px.fill(y);
+        }
+        out
+    }
+
     /// Mean of each channel over all pixels, summed in f64 (0 for an empty image).
     pub fn channel_means(&self) -> [f64; 3] {
         let mut sum = [0.0f64; 3];

@@ -4,6 +4,7 @@
 mod direct;
 mod irradiance;
 mod light_selection;
+mod measure;
 mod mis;
 mod path;
 mod render;
@@ -11,6 +12,7 @@ mod render;
 pub use direct::DirectIntegrator;
 pub use irradiance::estimate_irradiance;
 pub use light_selection::LightSelection;
+pub use measure::{measure, Measurement};
 pub use path::{parse_max_depth, EmitterVisibility, PathTracer};
 pub use render::{render, PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};
 

@@ -1,0 +1,285 @@
+//! `Scene`, `Measurement`, `load_file`, `load_string`.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use pyo3::exceptions::PyValueError;
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict};
+use steradian::integrator::{measure, render, PixelQuantity, RenderOptions};
+use steradian::sensor::Quantity;
+
+use crate::array::to_array;
+use crate::errors::{render_error, scene_error};
+use crate::interrupt::run_interruptible;
+
+/// `**defaults` as the loader's `-D name=value` pairs: booleans as `true`/`false`, anything
+/// else as `str(value)`.
+fn defines(defaults: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String)>> {
+    let Some(d) = defaults else { return Ok(Vec::new()) };
+    d.iter()
+        .map(|(k, v)| {
+            let value = if let Ok(b) = v.downcast::<PyBool>() {
+                if b.is_true() { "true" } else { "false" }.to_string()
+            } else {
+                v.str()?.to_string()
+            };
+            Ok((k.extract::<String>()?, value))
+        })
+        .collect()
+}
+
+/// Loads a Mitsuba 3 XML scene file. Keyword arguments override the file's `<default>`s (as
+/// `-D name=value` does on the command line), e.g. `load_file("scene.xml", spp=64)`.
+/// Relative file names in the scene (meshes, includes) resolve against the scene's folder.
+/// Raises `SceneError` with the file, line and column of the problem.
+#[pyfunction]
+#[pyo3(signature = (path, **defaults))]
+pub fn load_file(py: Python<'_>, path: PathBuf, defaults: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+    let defines = defines(defaults)?;
+    let scene = py.allow_threads(|| steradian_mitsuba::load_file(&path, &defines)).map_err(|e| scene_error(py, &e))?;
+    Ok(Scene { inner: Arc::new(scene), name: path.display().to_string() })
+}
+
+/// Loads a scene from a Mitsuba 3 XML string. Keyword arguments override its `<default>`s.
+/// Relative file names in it resolve against the current directory; error messages call it
+/// `<string>`. Raises `SceneError`.
+#[pyfunction]
+#[pyo3(signature = (xml, /, **defaults))]
+pub fn load_string(py: Python<'_>, xml: &str, defaults: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+    let defines = defines(defaults)?;
+    let scene = py
+        .allow_threads(|| steradian_mitsuba::load_string(xml, Path::new("<string>"), Path::new("."), &defines))
+        .map_err(|e| scene_error(py, &e))?;
+    Ok(Scene { inner: Arc::new(scene), name: "<string>".into() })
+}
+
+/// A loaded scene: geometry, materials, lights, sensors and integrator. Immutable; safe to
+/// share between threads.
+#[pyclass(frozen, module = "steradian._steradian")]
+pub struct Scene {
+    inner: Arc<steradian::scene::Scene>,
+    name: String,
+}
+
+/// A sensor given as its index or its `id`.
+#[derive(FromPyObject)]
+enum SensorArg {
+    Index(i64),
+    Id(String),
+}
+
+impl Scene {
+    fn sensor(&self, sensor: Option<SensorArg>) -> PyResult<usize> {
+        let n = self.inner.sensors.len();
+        match sensor {
+            None => Ok(0),
+            Some(SensorArg::Id(id)) => self.inner.find_sensor(&id).map_err(PyValueError::new_err),
+            Some(SensorArg::Index(i)) => match usize::try_from(i) {
+                Ok(i) if i < n => Ok(i),
+                _ => Err(PyValueError::new_err(format!("sensor index {i} out of range: the scene has {n} sensor(s)"))),
+            },
+        }
+    }
+}
+
+/// Checks the options shared by `render` and `measure`.
+fn check_counts(spp: Option<u32>, threads: Option<usize>) -> PyResult<()> {
+    if spp == Some(0) {
+        return Err(PyValueError::new_err("spp must be at least 1"));
+    }
+    if threads == Some(0) {
+        return Err(PyValueError::new_err("threads must be at least 1"));
+    }
+    Ok(())
+}
+
+#[pymethods]
+impl Scene {
+    /// Renders a sensor and returns its image as a float32 array of shape (H, W, 3), linear
+    /// RGB in physical units: radiance in W/(m²·sr) for cameras, the meter's quantity for
+    /// meters.
+    ///
+    /// - `spp`: samples per pixel (default: the scene's sampler's `sample_count`).
+    /// - `seed`: the sampler's seed, 0 by default as in Mitsuba's `mi.render`; `None` keeps
+    ///   the scene sampler's seed. The same scene, spp and seed give the same image, bit for
+    ///   bit, whatever the thread count, and the same image as the `steradian render` command.
+    /// - `sensor`: index or `id` of the sensor (default: the first).
+    /// - `quantity`: `"radiance"` (what the sensor measures), `"irradiance"` (W/m² on the
+    ///   surface each camera pixel sees) or `"illuminance"` (lux = 683 lm/W × luminance of the
+    ///   irradiance).
+    /// - `threads`: worker threads (default: all cores).
+    /// - `progress`: called as `progress(samples_done, samples_total)` on the calling thread
+    ///   while rendering; an exception it raises stops the render and propagates.
+    ///
+    /// The GIL is released while rendering. Ctrl-C stops the render and raises
+    /// `KeyboardInterrupt`.
+    #[pyo3(
+        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None)"
+    )]
+    fn render<'py>(
+        &self,
+        py: Python<'py>,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        sensor: Option<SensorArg>,
+        quantity: &str,
+        threads: Option<usize>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        check_counts(spp, threads)?;
+        let (pixel_quantity, lux) = match quantity {
+            "radiance" => (PixelQuantity::Sensor, false),
+            "irradiance" => (PixelQuantity::SurfaceIrradiance, false),
+            "illuminance" => (PixelQuantity::SurfaceIrradiance, true),
+            q => return Err(PyValueError::new_err(format!("quantity must be 'radiance', 'irradiance' or 'illuminance', not '{q}'"))),
+        };
+        let sensor = self.sensor(sensor)?;
+        let scene = &*self.inner;
+        let out = run_interruptible(py, progress, |cancel, report| {
+            let opts = RenderOptions {
+                spp,
+                seed,
+                sampler: None,
+                threads,
+                sensor: Some(sensor),
+                cancel: Some(cancel),
+                progress: Some(report),
+                quantity: pixel_quantity,
+            };
+            render(scene, &opts)
+        })?
+        .map_err(render_error)?;
+        let image = out.film.develop();
+        to_array(py, &if lux { image.to_illuminance() } else { image })
+    }
+
+    /// Reads a sensor: its value per RGB channel with the standard error of that value, in the
+    /// sensor's unit. For a meter (`radiancemeter`, `irradiancemeter`) this is its one pixel;
+    /// for a camera the image mean. Meters use independent random numbers, so the error is
+    /// a proper standard error. Same options as `render`; `seed=None` keeps the scene's seed.
+    #[pyo3(
+        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None)"
+    )]
+    fn measure(
+        &self,
+        py: Python<'_>,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        sensor: Option<SensorArg>,
+        threads: Option<usize>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Measurement> {
+        check_counts(spp, threads)?;
+        let sensor = self.sensor(sensor)?;
+        let scene = &*self.inner;
+        let m = run_interruptible(py, progress, |cancel, report| {
+            let opts = RenderOptions { spp, seed, threads, sensor: Some(sensor), cancel: Some(cancel), progress: Some(report), ..Default::default() };
+            measure(scene, &opts)
+        })?
+        .map_err(render_error)?;
+        Ok(Measurement { inner: m })
+    }
+
+    /// The `id` of each sensor, in scene order (`""` for a sensor without one).
+    #[getter]
+    fn sensor_ids(&self) -> Vec<String> {
+        self.inner.sensors.iter().map(|s| s.id.clone()).collect()
+    }
+
+    /// The film size (width, height) in pixels of a sensor (index or id; default the first).
+    #[pyo3(signature = (sensor=None))]
+    fn film_size(&self, sensor: Option<SensorArg>) -> PyResult<(u32, u32)> {
+        let i = self.sensor(sensor)?;
+        let f = &self.inner.sensors.get(i).ok_or_else(|| PyValueError::new_err("the scene has no sensor"))?.film;
+        Ok((f.width, f.height))
+    }
+
+    fn __repr__(&self) -> String {
+        let s = &*self.inner;
+        format!(
+            "<steradian.Scene {}: {} shapes, {} emitters, {} sensors>",
+            self.name,
+            s.shapes.len(),
+            s.emitters.len(),
+            s.sensors.len()
+        )
+    }
+}
+
+/// A sensor reading: `value` and `stderr` (float64 arrays of shape (3,), RGB, in `unit`).
+#[pyclass(frozen, module = "steradian._steradian")]
+pub struct Measurement {
+    inner: steradian::integrator::Measurement,
+}
+
+#[pymethods]
+impl Measurement {
+    /// The estimate per RGB channel, float64 array of shape (3,), in `unit`.
+    #[getter]
+    fn value<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        float64_array(py, self.inner.value)
+    }
+
+    /// The standard error of `value` per channel, float64 array of shape (3,), in `unit`.
+    #[getter]
+    fn stderr<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        float64_array(py, self.inner.stderr)
+    }
+
+    /// `"radiance"` or `"irradiance"`.
+    #[getter]
+    fn quantity(&self) -> &'static str {
+        match self.inner.quantity {
+            Quantity::Radiance => "radiance",
+            Quantity::Irradiance => "irradiance",
+        }
+    }
+
+    /// `"W/(m²·sr)"` for radiance, `"W/m²"` for irradiance.
+    #[getter]
+    fn unit(&self) -> &'static str {
+        self.inner.unit()
+    }
+
+    /// Index of the sensor read.
+    #[getter]
+    fn sensor(&self) -> usize {
+        self.inner.sensor
+    }
+
+    /// Samples per pixel taken.
+    #[getter]
+    fn spp(&self) -> u32 {
+        self.inner.spp
+    }
+
+    /// NaN/Inf samples dropped (never averaged in).
+    #[getter]
+    fn dropped_samples(&self) -> u64 {
+        self.inner.dropped_samples
+    }
+
+    fn __repr__(&self) -> String {
+        let (v, e) = (self.inner.value, self.inner.stderr);
+        format!(
+            "Measurement({}: [{:.6e} ± {:.2e}, {:.6e} ± {:.2e}, {:.6e} ± {:.2e}] {} at {} spp)",
+            self.quantity(),
+            v[0],
+            e[0],
+            v[1],
+            e[1],
+            v[2],
+            e[2],
+            self.unit(),
+            self.inner.spp
+        )
+    }
+}
+
+fn float64_array(py: Python<'_>, v: [f64; 3]) -> PyResult<Bound<'_, PyAny>> {
+    let np = py.import("numpy")?;
+    np.call_method1("array", (v.to_vec(), np.getattr("float64")?))
+}

@@ -1,0 +1,85 @@
+"""Types of the compiled extension module (crates/steradian-py)."""
+
+import os
+from typing import Any, Callable, Literal, Optional, Union, final
+
+import numpy as np
+import numpy.typing as npt
+
+from steradian import radiometry as radiometry
+
+__all__ = [
+    "Measurement",
+    "Scene",
+    "SceneError",
+    "load_file",
+    "load_string",
+    "radiometry",
+    "read_exr",
+    "write_exr",
+]
+
+__version__: str
+
+_Path = Union[str, "os.PathLike[str]"]
+_Sensor = Union[int, str]
+_Progress = Callable[[int, int], object]
+
+class SceneError(ValueError):
+    """A scene that cannot be loaded; ``str(e)`` is ``file:line:col: error: problem``."""
+
+    file: Optional[str]
+    line: Optional[int]
+    column: Optional[int]
+    message: str
+
+@final
+class Measurement:
+    """A sensor reading: value and standard error per RGB channel."""
+
+    @property
+    def value(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def stderr(self) -> npt.NDArray[np.float64]: ...
+    @property
+    def quantity(self) -> Literal["radiance", "irradiance"]: ...
+    @property
+    def unit(self) -> str: ...
+    @property
+    def sensor(self) -> int: ...
+    @property
+    def spp(self) -> int: ...
+    @property
+    def dropped_samples(self) -> int: ...
+
+@final
+class Scene:
+    """A loaded scene (immutable)."""
+
+    def render(
+        self,
+        spp: Optional[int] = None,
+        seed: Optional[int] = 0,
+        sensor: Optional[_Sensor] = None,
+        *,
+        quantity: Literal["radiance", "irradiance", "illuminance"] = "radiance",
+        threads: Optional[int] = None,
+        progress: Optional[_Progress] = None,
+    ) -> npt.NDArray[np.float32]: ...
+    def measure(
+        self,
+        spp: Optional[int] = None,
+        seed: Optional[int] = 0,
+        sensor: Optional[_Sensor] = None,
+        *,
+        threads: Optional[int] = None,
+        progress: Optional[_Progress] = None,
+    ) -> Measurement: ...
+    @property
+    def sensor_ids(self) -> list[str]: ...
+    def film_size(self, sensor: Optional[_Sensor] = None) -> tuple[int, int]: ...
+
+def load_file(path: _Path, **defaults: Any) -> Scene: ...
+def load_string(xml: str, /, **defaults: Any) -> Scene: ...
+def write_exr(path: _Path, image: npt.ArrayLike) -> None: ...
+def read_exr(path: _Path) -> npt.NDArray[np.float32]: ...

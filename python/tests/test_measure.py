@@ -1,0 +1,52 @@
+"""Meters from Python, against closed forms, with error bars from the estimator."""
+
+import numpy as np
+import pytest
+
+import steradian
+from steradian import radiometry
+from conftest import CORNELL, DISK_METER
+
+
+def test_disk_irradiance_within_five_standard_errors():
+    m = steradian.load_file(DISK_METER).measure(spp=40000, seed=1)
+    assert m.quantity == "irradiance" and m.unit == "W/m²"
+    assert m.value.shape == m.stderr.shape == (3,) and m.value.dtype == np.float64
+    # emitter radiance (1, 2, 4) W/(m²·sr), radius 0.8 m, 1.5 m above the 1 mm meter disk
+    expected = np.array([radiometry.disk_on_axis_irradiance(L, 0.8, 1.5) for L in (1.0, 2.0, 4.0)])
+    assert (m.stderr > 0).all()
+    # the error bar is a few tenths of a percent at this spp, not a loose bound
+    assert (m.stderr < 0.01 * expected).all()
+    z = (m.value - expected) / m.stderr
+    assert np.abs(z).max() < 5, z
+
+
+def test_standard_error_shrinks_as_one_over_sqrt_n():
+    scene = steradian.load_file(DISK_METER)
+    small = scene.measure(spp=2000, seed=2).stderr
+    large = scene.measure(spp=32000, seed=2).stderr
+    ratio = small / large  # expected √16 = 4
+    assert np.all((ratio > 3.0) & (ratio < 5.3)), ratio
+
+
+def test_camera_reading_is_the_image_mean():
+    scene = steradian.load_file(CORNELL, res=32)
+    image = scene.render(spp=4, seed=9)
+    m = scene.measure(spp=4, seed=9)
+    assert m.quantity == "radiance" and m.unit == "W/(m²·sr)"
+    np.testing.assert_allclose(m.value, image.astype(np.float64).mean(axis=(0, 1)), rtol=1e-6)
+    assert (m.stderr > 0).all() and (m.stderr < 0.1 * m.value).all()
+    assert "W/(m²·sr)" in repr(m)
+
+
+def test_meter_sensor_by_id():
+    scene = steradian.load_file(DISK_METER)
+    assert scene.sensor_ids == ["meter"]
+    a = scene.measure(spp=100, sensor="meter")
+    b = scene.measure(spp=100, sensor=0)
+    assert np.array_equal(a.value, b.value) and a.sensor == b.sensor == 0
+
+
+def test_meters_cannot_make_irradiance_maps():
+    with pytest.raises(ValueError, match="camera"):
+        steradian.load_file(DISK_METER).render(spp=1, quantity="irradiance")

@@ -1,0 +1,127 @@
+"""Rendering from Python: array layout, units, determinism, options."""
+
+import numpy as np
+import pytest
+
+import steradian
+from conftest import CORNELL
+
+# A camera in a uniform environment of radiance L sees L in every pixel, whatever the
+# filter and the samples: an exact check of units and of the (H, W, 3) layout.
+SKY = """<scene version="3.0.0">
+    <integrator type="path"/>
+    <emitter type="constant"><rgb name="radiance" value="0.25, 1.5, 3"/></emitter>
+    <sensor type="perspective">
+        <film type="hdrfilm">
+            <integer name="width" value="7"/><integer name="height" value="5"/>
+        </film>
+    </sensor>
+</scene>"""
+
+
+@pytest.fixture(scope="module")
+def cornell():
+    return steradian.load_file(CORNELL, res=48)
+
+
+def test_uniform_sky_gives_its_radiance_in_every_pixel():
+    image = steradian.load_string(SKY).render(spp=3)
+    assert image.dtype == np.float32
+    assert image.shape == (5, 7, 3)  # (H, W, 3)
+    np.testing.assert_allclose(image, np.broadcast_to([0.25, 1.5, 3.0], (5, 7, 3)), rtol=1e-6)
+
+
+def test_readme_example_shape_and_values(cornell):
+    image = cornell.render(spp=2)
+    assert image.shape == (48, 48, 3) and image.dtype == np.float32
+    assert image.flags.c_contiguous and image.flags.writeable
+    assert np.isfinite(image).all() and (image >= 0).all()
+    # the light (radiance 18.4, 14.0, 6.8 W/(m²·sr) in the scene) is in view
+    assert image.max() > 5.0
+    assert 0.01 < image.mean() < 1.0
+
+
+def test_same_seed_same_image_other_seed_other_image(cornell):
+    a = cornell.render(spp=2, seed=5)
+    b = cornell.render(spp=2, seed=5)
+    c = cornell.render(spp=2, seed=6)
+    assert np.array_equal(a, b)
+    assert not np.array_equal(a, c)
+
+
+def test_default_seed_is_zero_and_none_keeps_the_scene_seed(cornell):
+    assert np.array_equal(cornell.render(spp=2), cornell.render(spp=2, seed=0))
+    # the scene's sampler has no seed: Mitsuba's default, 0
+    assert np.array_equal(cornell.render(spp=2, seed=None), cornell.render(spp=2, seed=0))
+
+
+def test_thread_count_does_not_change_the_image(cornell):
+    assert np.array_equal(cornell.render(spp=3, threads=1), cornell.render(spp=3, threads=2))
+
+
+def test_defaults_override_scene_defaults():
+    scene = steradian.load_file(str(CORNELL), res=20, spp=3)
+    assert scene.film_size() == (20, 20)
+    # spp=None takes the scene's sample count, here the overridden <default name="spp">
+    assert scene.measure(spp=None).spp == 3
+    assert scene.render().shape == (20, 20, 3)
+
+
+def test_sensor_by_index_and_id(cornell):
+    assert cornell.sensor_ids == ["", "top-down"]
+    by_id = cornell.render(spp=1, sensor="top-down")
+    by_index = cornell.render(spp=1, sensor=1)
+    assert np.array_equal(by_id, by_index)
+    assert not np.array_equal(by_id, cornell.render(spp=1, sensor=0))
+
+
+def test_irradiance_and_illuminance_maps(cornell):
+    e = cornell.render(spp=2, sensor="top-down", quantity="irradiance")
+    lux = cornell.render(spp=2, sensor="top-down", quantity="illuminance")
+    assert e.shape == lux.shape == (48, 48, 3)
+    assert e.max() > 0
+    # lux = 683 lm/W × luminance (Rec. 709 / sRGB Y weights) of the irradiance, in all channels
+    y = 683.0 * (0.212671 * e[..., 0] + 0.715160 * e[..., 1] + 0.072169 * e[..., 2])
+    np.testing.assert_allclose(lux[..., 0], y, rtol=1e-5, atol=1e-6)
+    assert np.array_equal(lux[..., 0], lux[..., 2])
+
+
+def test_progress_callback_reaches_the_total(cornell):
+    calls = []
+    cornell.render(spp=8, progress=lambda done, total: calls.append((done, total)))
+    assert calls, "the callback was never called"
+    total = 48 * 48 * 8
+    assert all(t == total for _, t in calls)
+    dones = [d for d, _ in calls]
+    assert dones == sorted(dones) and dones[-1] == total
+
+
+def test_exception_in_progress_callback_stops_and_propagates(cornell):
+    class Stop(Exception):
+        pass
+
+    def progress(done, total):
+        raise Stop(done)
+
+    with pytest.raises(Stop):
+        steradian.load_file(CORNELL, res=64).render(spp=4096, progress=progress)
+
+
+def test_gil_is_released_while_rendering():
+    import threading
+    import time
+
+    scene = steradian.load_file(CORNELL, res=64)
+    ticks = []
+    worker = threading.Thread(target=lambda: scene.render(spp=64, threads=1))
+    start = time.perf_counter()
+    worker.start()
+    while worker.is_alive():
+        ticks.append(time.perf_counter())
+        time.sleep(0.002)
+    elapsed = time.perf_counter() - start
+    worker.join()
+    assert elapsed > 0.3, f"render too short ({elapsed:.2f} s) to tell"
+    # with the GIL held by the render, this thread could not tick until it ended
+    gaps = np.diff([start] + ticks)
+    assert len(ticks) > 20 and gaps.max() < max(0.25, elapsed / 4), (len(ticks), gaps.max(), elapsed)

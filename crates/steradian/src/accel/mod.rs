@@ -8,8 +8,9 @@
 //! - Layout (`wide.rs`): the binary tree is collapsed to an 8-wide BVH (BVH8 beats BVH4 on
 //!   AVX2 machines: one 256-bit test covers all children). Nodes are 256 bytes, boxes in SoA
 //!   layout; triangles are copied in leaf order into 4-wide SoA packets (176 bytes per 4
-//!   triangles) so traversal never reads the mesh; analytic shapes (spheres, disks, rectangles,
-//!   cylinders) are a second leaf kind tested through [`crate::shape::Shape::intersect_prim`].
+//!   triangles) so traversal never reads the mesh; rectangles enter as their two triangles
+//!   ([`crate::shape::Shape::triangle`]); curved shapes (spheres, disks, cylinders) are a
+//!   second leaf kind tested through [`crate::shape::Shape::intersect_prim`].
 //! - Triangles (`triangle.rs`): the watertight test of Woop, Benthin & Wald (2013).
 //! - Traversal (`traverse.rs`): ordered closest hit and first-hit occlusion with a fixed stack,
 //!   robust box tests (Ize 2013), kernels (`simd.rs`) chosen once at build time by runtime CPU

@@ -177,8 +177,8 @@ fn layout_is_compact_and_complete() {
                     }
                     assert!(seen.insert((ids.shape[lane], ids.prim[lane])));
                     // the packet holds the triangle's vertices, inside the leaf box
-                    let Shape::Mesh(m) = &shapes[ids.shape[lane] as usize] else { panic!("triangle of a non-mesh") };
-                    for (k, v) in m.triangle(ids.prim[lane]).iter().enumerate() {
+                    let tri = shapes[ids.shape[lane] as usize].triangle(ids.prim[lane]).expect("triangle of a curved shape");
+                    for (k, v) in tri.iter().enumerate() {
                         assert_eq!([p.v[k][0][lane], p.v[k][1][lane], p.v[k][2][lane]], v.to_array());
                         assert!(v.cmpge(parent.min).all() && v.cmple(parent.max).all());
                     }
@@ -186,7 +186,7 @@ fn layout_is_compact_and_complete() {
             }
         } else {
             for r in &accel.others[leaf_range(code)] {
-                assert!(!matches!(shapes[r.shape as usize], Shape::Mesh(_)));
+                assert!(shapes[r.shape as usize].triangle(r.prim).is_none(), "a triangle among the curved shapes");
                 assert!(seen.insert((r.shape, r.prim)));
             }
         }

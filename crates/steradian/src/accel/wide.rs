@@ -172,7 +172,7 @@ impl Accel {
         let isa = if isa.is_supported() { isa } else { Isa::Scalar };
         let mut build: Vec<BuildPrim> = Vec::new();
         for (s, shape) in shapes.iter().enumerate() {
-            let is_triangle = matches!(shape, Shape::Mesh(_));
+            let is_triangle = shape.triangle(0).is_some();
             let n = shape.prim_count();
             let first = build.len();
             build.resize(first + n as usize, BuildPrim { bounds: Aabb::EMPTY, centroid: Vec3::ZERO, shape: s as u32, prim: 0, is_triangle });
@@ -263,8 +263,8 @@ impl Collapse<'_> {
                     let mut p = Tri4 { v: [[[f32::NAN; 4]; 3]; 3] };
                     let mut ids = Tri4Ids { shape: [u32::MAX; 4], prim: [u32::MAX; 4] };
                     for (lane, bp) in chunk.iter().enumerate() {
-                        let Shape::Mesh(mesh) = &self.shapes[bp.shape as usize] else { unreachable!("triangle leaves hold mesh triangles") };
-                        for (k, v) in mesh.triangle(bp.prim).iter().enumerate() {
+                        let tri = self.shapes[bp.shape as usize].triangle(bp.prim).expect("triangle leaves hold triangles");
+                        for (k, v) in tri.iter().enumerate() {
                             for axis in 0..3 {
                                 p.v[k][axis][lane] = v[axis];
                             }

@@ -11,7 +11,7 @@
 use glam::{Vec2, Vec3};
 
 use super::{EmitterSample, Support};
-use crate::shape::{Shape, SurfacePoint};
+use crate::shape::{Shape, SurfacePoint, UvRequest};
 use crate::texture::Texture;
 use crate::Spectrum;
 
@@ -38,7 +38,9 @@ impl AreaLight {
 
     #[inline]
     pub fn sample_direction(&self, shapes: &[Shape], p: Vec3, u: Vec2) -> Option<EmitterSample> {
-        let ds = shapes[self.shape as usize].sample_direction(p, u)?;
+        // a uniform emitter needs no surface coordinates
+        let uv = if matches!(self.radiance, Texture::Constant(_)) { UvRequest::Skip } else { UvRequest::Compute };
+        let ds = shapes[self.shape as usize].sample_direction(p, u, uv)?;
         // one-sided: the sampled point must face the reference point
         if ds.n.dot(ds.wi) >= 0.0 || !(ds.pdf > 0.0) {
             return None;

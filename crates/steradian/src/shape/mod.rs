@@ -65,7 +65,7 @@ pub struct DirectionSample {
     pub p: Vec3,
     /// Geometric normal (the shape's own orientation), unit.
     pub n: Vec3,
-    /// Surface coordinates.
+    /// Surface coordinates (zero where [`UvRequest::Skip`] allowed it).
     pub uv: Vec2,
     /// Unit direction from the reference point towards `p`.
     pub wi: Vec3,
@@ -75,6 +75,15 @@ pub struct DirectionSample {
     pub pdf: f32,
     /// Primitive (triangle) the point lies on; 0 for analytic shapes.
     pub prim: u32,
+}
+
+/// Whether a direction sample must carry the point's surface coordinates: where they cost
+/// transcendental functions (spheres), uniform emitters skip them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum UvRequest {
+    Compute,
+    /// `uv` may be left at zero.
+    Skip,
 }
 
 /// A point on a shape's surface, as density queries need it: where it is, its geometric
@@ -119,10 +128,12 @@ impl Shape {
         }
     }
 
-    /// Number of primitives: triangles for meshes, 1 for analytic shapes.
+    /// Number of primitives: triangles for meshes and rectangles (2), 1 for other analytic
+    /// shapes.
     pub fn prim_count(&self) -> u32 {
         match self {
             Shape::Mesh(s) => s.indices.len() as u32,
+            Shape::Rectangle(_) => 2,
             _ => 1,
         }
     }
@@ -131,17 +142,36 @@ impl Shape {
     pub fn prim_bounds(&self, prim: u32) -> Aabb {
         match self {
             Shape::Mesh(s) => s.prim_bounds(prim),
+            Shape::Rectangle(s) => {
+                let [a, b, c] = s.triangle(prim);
+                let mut bb = Aabb::from_point(a);
+                bb.grow(b);
+                bb.grow(c);
+                bb
+            }
             _ => self.bounds(),
         }
     }
 
+    /// The triangle that ray queries test for primitive `prim`, for shapes made of triangles
+    /// (meshes, and rectangles as two triangles); `None` for curved shapes.
+    #[inline]
+    pub fn triangle(&self, prim: u32) -> Option<[Vec3; 3]> {
+        match self {
+            Shape::Mesh(s) => Some(s.triangle(prim)),
+            Shape::Rectangle(s) => Some(s.triangle(prim)),
+            Shape::Disk(_) | Shape::Sphere(_) | Shape::Cylinder(_) => None,
+        }
+    }
+
     /// Ray–primitive test: `(t, uv)` with `0 < t < ray.t_max`. `uv` holds the triangle
-    /// barycentrics (b1, b2) for meshes and the surface coordinates for analytic shapes.
+    /// barycentrics (b1, b2) for meshes and rectangles and the surface coordinates for other
+    /// analytic shapes.
     #[inline]
     pub fn intersect_prim(&self, prim: u32, ray: &Ray) -> Option<(f32, Vec2)> {
         match self {
             Shape::Mesh(s) => s.intersect_prim(prim, ray),
-            Shape::Rectangle(s) => s.intersect(ray),
+            Shape::Rectangle(s) => s.intersect_prim(prim, ray),
             Shape::Disk(s) => s.intersect(ray),
             Shape::Sphere(s) => s.intersect(ray),
             Shape::Cylinder(s) => s.intersect(ray),
@@ -182,10 +212,11 @@ impl Shape {
     }
 
     /// A point on the surface as seen from `reference`, with its density per solid angle.
-    /// `None` when that density would be 0 or not finite.
-    pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
+    /// `None` when that density would be 0 or not finite. `uv` says whether the caller needs
+    /// the point's surface coordinates (a textured emitter does, a uniform one does not).
+    pub fn sample_direction(&self, reference: Vec3, u: Vec2, uv: UvRequest) -> Option<DirectionSample> {
         match self {
-            Shape::Sphere(s) => s.sample_direction(reference, u),
+            Shape::Sphere(s) => s.sample_direction(reference, u, uv),
             Shape::Rectangle(s) => s.sample_direction(reference, u),
             Shape::Mesh(s) => s.sample_direction(reference, u),
             Shape::Disk(_) | Shape::Cylinder(_) => direction_from_position(reference, &self.sample_position(u), 0),

@@ -12,11 +12,16 @@
 //! `flip_normals`), uv = ((x+1)/2, (y+1)/2) of the local hit point, the area
 //! `4·|to_world·x̂ × to_world·ŷ|` in m², and uniform area sampling (pdf 1/area). Seen
 //! from a point, a true rectangle (perpendicular edges) is sampled uniformly in the solid
-//! angle it subtends ([`SphericalRectangle`]) unless that solid angle is tiny (< 3·10⁻⁴ sr,
-//! where area sampling is as good and better conditioned) or nearly a hemisphere.
+//! angle it subtends ([`SphericalRectangle`]) when it looks large from there: area/distance²
+//! to its centre above 1 (near an emitter, where area sampling's 1/r² and emitter cosine make
+//! the estimate noisy), and the exact solid angle below 6.22 sr (nearly a hemisphere, where the
+//! parametrisation loses precision). Elsewhere area sampling is used: the two densities then
+//! differ little, and area sampling costs a fraction of the spherical map (measured at 64 spp,
+//! one thread: cornell 12 % and materials 16 % less time to the same relMSE).
 
 use glam::{Vec2, Vec3};
 
+use crate::accel::intersect_triangle;
 use super::{direction_from_position, is_positive_finite, DirectionSample, PositionSample};
 use crate::sampling::spherical_rectangle::{RectangleFrame, SphericalRectangle};
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
@@ -30,10 +35,16 @@ pub struct Rectangle {
     area: f32,
     /// The rectangle's own frame, when its edges are perpendicular (a true rectangle).
     frame: Option<RectangleFrame>,
+    /// Centre, m.
+    centre: Vec3,
+    /// Corners at uv (0,0), (1,0), (1,1), (0,1), m.
+    corners: [Vec3; 4],
 }
 
-/// Solid angles (sr) within which spherical-rectangle sampling is used (pbrt-v4's bounds).
-const SOLID_ANGLE_SAMPLING: std::ops::Range<f32> = 3e-4..6.22;
+/// Spherical-rectangle sampling is used where area/distance² (to the centre) exceeds this...
+const SOLID_ANGLE_SAMPLING_MIN_APPARENT_SIZE: f32 = 1.0;
+/// ...and the solid angle (sr) stays below this.
+const SOLID_ANGLE_SAMPLING_MAX: f32 = 6.22;
 
 impl Rectangle {
     pub fn new(to_world: &Transform, flip_normals: bool) -> Rectangle {
@@ -42,9 +53,10 @@ impl Rectangle {
         let dpdu = to_world.vector(Vec3::X * 2.0);
         let dpdv = to_world.vector(Vec3::Y * 2.0);
         let corner = to_world.point(Vec3::new(-1.0, -1.0, 0.0));
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| to_world.point(Vec3::new(x, y, 0.0)));
         let perpendicular = dpdu.dot(dpdv).abs() <= 1e-5 * dpdu.length() * dpdv.length();
         let frame = perpendicular.then(|| RectangleFrame::new(corner, dpdu, dpdv));
-        Rectangle { to_world: *to_world, n, dpdu, dpdv, area: dpdu.cross(dpdv).length(), frame }
+        Rectangle { to_world: *to_world, n, dpdu, dpdv, area: dpdu.cross(dpdv).length(), frame, centre: to_world.point(Vec3::ZERO), corners }
     }
 
     /// World normal of the front side.
@@ -60,21 +72,30 @@ impl Rectangle {
         self.area
     }
 
+    /// The two triangles that ray queries test: (c00, c10, c11) and (c00, c11, c01), with
+    /// c_uv the corner at surface coordinates uv. As triangles, rectangles go into the BVH's
+    /// SIMD triangle packets with the watertight test, like mesh faces.
     #[inline]
-    pub fn intersect(&self, ray: &Ray) -> Option<(f32, Vec2)> {
-        let o = self.to_world.inv.transform_point3(ray.o);
-        let d = self.to_world.inv.transform_vector3(ray.d);
-        let t = -o.z / d.z;
-        if !(t > 0.0 && t < ray.t_max) {
-            return None;
-        }
-        let x = o.x + t * d.x;
-        let y = o.y + t * d.y;
-        if x.abs() <= 1.0 && y.abs() <= 1.0 {
-            Some((t, Vec2::new(0.5 * (x + 1.0), 0.5 * (y + 1.0))))
+    pub fn triangle(&self, k: u32) -> [Vec3; 3] {
+        let [c00, c10, c11, c01] = self.corners;
+        if k == 0 {
+            [c00, c10, c11]
         } else {
-            None
+            [c00, c11, c01]
         }
+    }
+
+    #[inline]
+    pub fn intersect_prim(&self, k: u32, ray: &Ray) -> Option<(f32, Vec2)> {
+        let [a, b, c] = self.triangle(k);
+        intersect_triangle(a, b, c, ray)
+    }
+
+    /// Surface coordinates of the point with barycentrics `b` on triangle `k`.
+    #[inline]
+    fn uv_of(k: u32, b: Vec2) -> Vec2 {
+        let uv = if k == 0 { Vec2::new(b.x + b.y, b.y) } else { Vec2::new(b.x, b.x + b.y) };
+        uv.clamp(Vec2::ZERO, Vec2::ONE)
     }
 
     fn point(&self, uv: Vec2) -> Vec3 {
@@ -82,12 +103,13 @@ impl Rectangle {
     }
 
     pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
+        let uv = Self::uv_of(hit.prim, hit.uv);
         SurfaceInteraction {
-            p: self.point(hit.uv),
+            p: self.point(uv),
             t: hit.t,
             n: self.n,
             sh_frame: Frame::from_normal_tangent(self.n, self.dpdu),
-            uv: hit.uv,
+            uv,
             dpdu: self.dpdu,
             dpdv: self.dpdv,
             wo: -ray.d,
@@ -98,8 +120,12 @@ impl Rectangle {
 
     /// The rectangle as seen from `reference`, when solid-angle sampling applies there.
     fn spherical(&self, reference: Vec3) -> Option<SphericalRectangle> {
-        let sr = SphericalRectangle::from_frame(reference, self.frame.as_ref()?);
-        SOLID_ANGLE_SAMPLING.contains(&sr.solid_angle).then_some(sr)
+        let frame = self.frame.as_ref()?;
+        if self.area <= SOLID_ANGLE_SAMPLING_MIN_APPARENT_SIZE * (self.centre - reference).length_squared() {
+            return None;
+        }
+        let sr = SphericalRectangle::from_frame(reference, frame);
+        (sr.solid_angle > 0.0 && sr.solid_angle < SOLID_ANGLE_SAMPLING_MAX).then_some(sr)
     }
 
     /// A point seen from `reference`, uniformly in solid angle where possible.

@@ -168,7 +168,7 @@ impl Sphere {
         Some((cos_max, one_minus, dc2.sqrt()))
     }
 
-    pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
+    pub fn sample_direction(&self, reference: Vec3, u: Vec2, uv: super::UvRequest) -> Option<DirectionSample> {
         let Some((cos_max, one_minus, dc)) = self.cone(reference) else {
             return super::direction_from_position(reference, &self.sample_position(u), 0);
         };
@@ -191,7 +191,11 @@ impl Sphere {
             return None;
         }
         let n = self.normal_at(p);
-        Some(DirectionSample { p, n, uv: self.uv_at(p), wi, dist, pdf, prim: 0 })
+        let uv = match uv {
+            super::UvRequest::Compute => self.uv_at(p),
+            super::UvRequest::Skip => Vec2::ZERO,
+        };
+        Some(DirectionSample { p, n, uv, wi, dist, pdf, prim: 0 })
     }
 
     pub fn pdf_direction(&self, reference: Vec3, p: Vec3, n: Vec3) -> f32 {

@@ -51,7 +51,7 @@ pub fn check_sampling(shape: &Shape, on_surface: impl Fn(Vec3) -> bool, referenc
     let n = 40_000;
     let (mut sum, mut sum2) = (0.0f64, 0.0f64);
     for _ in 0..n {
-        let Some(ds) = shape.sample_direction(reference, u2(&mut rng)) else { continue };
+        let Some(ds) = shape.sample_direction(reference, u2(&mut rng), super::UvRequest::Compute) else { continue };
         assert!(ds.pdf > 0.0 && ds.pdf.is_finite());
         assert!((ds.wi.length() - 1.0).abs() < 1e-4);
         let scale = 1.0 + ds.p.abs().max_element().max(reference.abs().max_element());

@@ -70,11 +70,14 @@ fn rectangle_sampling() {
     let (a, b, h) = (2.0f64, 1.0f64, 1.5f64);
     let m = sc(Vec3::new(a as f32, b as f32, 1.0)).then(&tr(Vec3::new(0.3, -0.2, 0.0)));
     let s = Shape::Rectangle(Rectangle::new(&m, false));
-    let omega = 4.0 * (a * b / ((a * a + h * h) * (b * b + h * h)).sqrt()).asin();
+    let omega = |h: f64| 4.0 * (a * b / ((a * a + h * h) * (b * b + h * h)).sqrt()).asin();
     let on = |p: Vec3| p.z.abs() < 1e-5 && (p.x - 0.3).abs() <= 2.0 + 1e-5 && (p.y + 0.2).abs() <= 1.0 + 1e-5;
-    check_sampling(&s, on, Vec3::new(0.3, -0.2, h as f32), omega, true, 1);
+    // near (area/d² = 3.6: spherical-rectangle sampling)
+    check_sampling(&s, on, Vec3::new(0.3, -0.2, h as f32), omega(h), true, 1);
     // seen from below the front side: same solid angle (|cos|)
-    check_sampling(&s, on, Vec3::new(0.3, -0.2, -h as f32), omega, true, 2);
+    check_sampling(&s, on, Vec3::new(0.3, -0.2, -h as f32), omega(h), true, 2);
+    // far (area/d² = 0.5: area sampling)
+    check_sampling(&s, on, Vec3::new(0.3, -0.2, 4.0), omega(4.0), true, 3);
 }
 
 // ---------------------------------------------------------------- disk
@@ -351,7 +354,7 @@ fn mesh_validation_and_degenerate_triangles() {
     // a mesh with no area cannot be sampled
     let z = Shape::Mesh(Mesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::X], None, None, vec![[0, 1, 2]], &id, false, false).unwrap());
     assert_eq!(z.surface_area(), 0.0);
-    assert!(z.sample_direction(Vec3::Z, Vec2::splat(0.5)).is_none());
+    assert!(z.sample_direction(Vec3::Z, Vec2::splat(0.5), super::UvRequest::Compute).is_none());
     assert_eq!(z.pdf_direction(Vec3::Z, &super::SurfacePoint { p: Vec3::ZERO, n: Vec3::Z, prim: 0 }), 0.0);
 }
 

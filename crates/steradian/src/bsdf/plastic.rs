@@ -29,7 +29,7 @@ use std::f32::consts::FRAC_1_PI;
 use glam::{Vec2, Vec3};
 
 use super::fresnel::{fresnel_diffuse_reflectance, fresnel_dielectric, reflect};
-use super::{cos_theta, BsdfSample, Lobe, ShadingPoint};
+use super::{cos_theta, positive, BsdfSample, Lobe, ShadingPoint};
 use crate::sampling::warp;
 use crate::texture::Texture;
 use crate::Spectrum;
@@ -139,7 +139,7 @@ impl Plastic {
         let p_diffuse = 1.0 - p_specular;
         let wi = warp::square_to_cosine_hemisphere(u2);
         let pdf = p_diffuse * warp::square_to_cosine_hemisphere_pdf(wi);
-        if !(pdf > 0.0) || cos_theta(wi) <= 0.0 {
+        if !positive(pdf) || cos_theta(wi) <= 0.0 {
             return None;
         }
         let f_i = fresnel_dielectric(cos_theta(wi), self.eta).r;

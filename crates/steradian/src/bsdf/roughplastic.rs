@@ -36,7 +36,7 @@ use glam::{Vec2, Vec3};
 use super::fresnel::{fresnel_dielectric, reflect_about, refract_about};
 use super::microfacet::MicrofacetDistribution;
 use super::plastic::{specular_probability, specular_sampling_weight, InternalScattering};
-use super::{cos_theta, BsdfSample, Lobe, ShadingPoint};
+use super::{cos_theta, positive, BsdfSample, Lobe, ShadingPoint};
 use crate::radiometry::gauss_legendre;
 use crate::sampling::warp;
 use crate::texture::Texture;
@@ -142,7 +142,7 @@ impl RoughPlastic {
             warp::square_to_cosine_hemisphere(u2)
         };
         let pdf = self.pdf(sp, wo, wi);
-        if !(pdf > 0.0) {
+        if !positive(pdf) {
             return None;
         }
         let weight = self.eval(sp, wo, wi) * (cos_theta(wi) / pdf);

@@ -14,6 +14,7 @@ use super::{EmitterSample, Support};
 use crate::shape::{Shape, SurfacePoint, UvRequest};
 use crate::texture::Texture;
 use crate::Spectrum;
+use crate::shape::is_positive;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct AreaLight {
@@ -42,7 +43,7 @@ impl AreaLight {
         let uv = if matches!(self.radiance, Texture::Constant(_)) { UvRequest::Skip } else { UvRequest::Compute };
         let ds = shapes[self.shape as usize].sample_direction(p, u, uv)?;
         // one-sided: the sampled point must face the reference point
-        if ds.n.dot(ds.wi) >= 0.0 || !(ds.pdf > 0.0) {
+        if ds.n.dot(ds.wi) >= 0.0 || !is_positive(ds.pdf) {
             return None;
         }
         Some(EmitterSample {

@@ -12,6 +12,7 @@ use glam::Vec3;
 
 use super::{EmitterSample, Support};
 use crate::Spectrum;
+use crate::shape::is_positive;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct DirectionalLight {
@@ -23,7 +24,7 @@ pub struct DirectionalLight {
 impl DirectionalLight {
     pub fn new(direction: Vec3, irradiance: Spectrum) -> Result<Self, String> {
         let len = direction.length();
-        if !(len > 0.0) || !len.is_finite() {
+        if !is_positive(len) || !len.is_finite() {
             return Err("direction must be a non-zero finite vector".into());
         }
         Ok(DirectionalLight { direction: direction / len, irradiance })

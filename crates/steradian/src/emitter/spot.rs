@@ -15,6 +15,7 @@ use glam::Vec3;
 use super::{EmitterSample, Support};
 use crate::geometry::{Frame, Transform};
 use crate::Spectrum;
+use crate::shape::is_positive;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpotLight {
@@ -86,7 +87,7 @@ impl SpotLight {
     pub fn sample_direction(&self, p: Vec3) -> Option<EmitterSample> {
         let d = self.position - p;
         let dist2 = d.length_squared();
-        if !(dist2 > 0.0) {
+        if !is_positive(dist2) {
             return None;
         }
         let dist = dist2.sqrt();

@@ -1,4 +1,5 @@
 use glam::Vec3;
+use crate::shape::is_positive;
 
 /// An orthonormal frame (s, t, n). Converts between world space and a local space in which
 /// `n` is +z, so that `to_local(w).z = cos θ`.
@@ -27,7 +28,7 @@ impl Frame {
     pub fn from_normal_tangent(n: Vec3, dpdu: Vec3) -> Self {
         let s = dpdu - n * n.dot(dpdu);
         let len2 = s.length_squared();
-        if !(len2 > 1e-20) || !len2.is_finite() {
+        if !is_positive(len2 - 1e-20) || !len2.is_finite() {
             return Self::from_normal(n);
         }
         let s = s / len2.sqrt();

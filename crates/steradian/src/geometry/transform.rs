@@ -3,6 +3,7 @@ use std::fmt;
 use glam::{Mat3, Mat4, Vec3, Vec4};
 
 use super::{Aabb, Ray};
+use crate::shape::is_positive;
 
 /// An affine (or projective) transform with its inverse. Points, vectors and normals
 /// transform differently: normals use the inverse transpose so they stay perpendicular to
@@ -73,7 +74,7 @@ impl Transform {
     /// Right-handed rotation by `angle_deg` degrees about `axis` (Mitsuba's `<rotate>`).
     pub fn rotate(axis: Vec3, angle_deg: f32) -> Result<Self, TransformError> {
         let len = axis.length();
-        if !(len > 0.0) || !angle_deg.is_finite() {
+        if !is_positive(len) || !angle_deg.is_finite() {
             return Err(TransformError::Singular);
         }
         let r = Mat4::from_axis_angle(axis / len, angle_deg.to_radians());
@@ -84,12 +85,12 @@ impl Transform {
     /// and +x to `left = up × dir`, with the origin at `origin`.
     pub fn look_at(origin: Vec3, target: Vec3, up: Vec3) -> Result<Self, TransformError> {
         let dir = target - origin;
-        if !(dir.length_squared() > 0.0) {
+        if !is_positive(dir.length_squared()) {
             return Err(TransformError::Singular);
         }
         let dir = dir.normalize();
         let left = up.cross(dir);
-        if !(left.length_squared() > 0.0) {
+        if !is_positive(left.length_squared()) {
             return Err(TransformError::Singular);
         }
         let left = left.normalize();

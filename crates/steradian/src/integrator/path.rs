@@ -24,6 +24,7 @@ use crate::sampling::PixelSampler;
 use crate::scene::Scene;
 use crate::shape::SurfacePoint;
 use crate::Spectrum;
+use crate::shape::is_positive;
 
 /// Whether directly visible emitters are drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -140,7 +141,7 @@ impl PathTracer {
             depth += 1;
 
             let beta_max = beta.max_element();
-            if !(beta_max > 0.0) {
+            if !is_positive(beta_max) {
                 break;
             }
             if depth >= self.rr_depth {

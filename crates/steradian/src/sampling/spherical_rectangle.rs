@@ -127,7 +127,7 @@ impl SphericalRectangle {
 /// several times more.
 #[inline]
 fn acos(x: f32) -> f32 {
-    const A: [f32; 8] = [1.570_796_3, -0.214_598_8, 0.088_978_99, -0.050_174_3, 0.030_891_88, -0.017_088_126, 0.006_670_09, -0.001_262_491_1];
+    const A: [f32; 8] = [std::f32::consts::FRAC_PI_2, -0.214_598_8, 0.088_978_99, -0.050_174_3, 0.030_891_88, -0.017_088_126, 0.006_670_09, -0.001_262_491_1];
     let ax = x.abs().min(1.0);
     // Horner's rule with plain products: `mul_add` would call libm's fmaf without FMA hardware
     let p = ((((((A[7] * ax + A[6]) * ax + A[5]) * ax + A[4]) * ax + A[3]) * ax + A[2]) * ax + A[1]) * ax + A[0];

@@ -1,6 +1,7 @@
 //! Field of view as Mitsuba's projective cameras specify it.
 
 use std::fmt;
+use crate::shape::is_positive;
 
 /// Which image axis a given `fov` applies to (`fov_axis`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,7 +55,7 @@ impl FieldOfView {
         let (degrees, axis) = match *self {
             FieldOfView::Angle { degrees, axis } => (degrees as f64, axis),
             FieldOfView::FocalLength { mm } => {
-                if !(mm > 0.0) || !mm.is_finite() {
+                if !is_positive(mm) || !mm.is_finite() {
                     return Err(format!("focal_length must be positive, got {mm} mm"));
                 }
                 // diagonal field of view of a 36×24 mm frame

@@ -19,6 +19,7 @@
 use glam::{Vec2, Vec3};
 
 use crate::geometry::{Ray, Transform};
+use crate::shape::is_positive;
 
 #[derive(Clone, Debug)]
 pub struct Perspective {
@@ -38,7 +39,7 @@ pub(super) fn validate(to_world: &Transform, near_clip: f32, far_clip: f32) -> R
     if !(near_clip > 0.0 && near_clip.is_finite()) {
         return Err(format!("near_clip must be positive, got {near_clip}"));
     }
-    if !(far_clip > near_clip) {
+    if !is_positive(far_clip - near_clip) {
         return Err(format!("far_clip ({far_clip}) must exceed near_clip ({near_clip})"));
     }
     Ok(())

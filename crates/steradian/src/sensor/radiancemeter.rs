@@ -14,6 +14,7 @@
 use glam::Vec3;
 
 use crate::geometry::{Ray, Transform};
+use crate::shape::is_positive;
 
 #[derive(Clone, Debug)]
 pub struct RadianceMeter {
@@ -25,7 +26,7 @@ pub struct RadianceMeter {
 impl RadianceMeter {
     pub fn new(origin: Vec3, direction: Vec3) -> Result<Self, String> {
         let len = direction.length();
-        if !(len > 0.0) || !len.is_finite() || !origin.is_finite() {
+        if !is_positive(len) || !len.is_finite() || !origin.is_finite() {
             return Err("origin must be finite and direction a non-zero finite vector".into());
         }
         Ok(RadianceMeter { origin, direction: direction / len })

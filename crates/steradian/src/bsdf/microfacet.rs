@@ -19,6 +19,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use crate::sampling::warp;
+use crate::texture::Texture;
 
 /// The shape of the microfacet slope distribution.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -38,6 +39,16 @@ pub struct MicrofacetDistribution {
 }
 
 impl MicrofacetDistribution {
+    /// This distribution with α_u, α_v read at `uv` from `alpha` (textures' `eval_1`) where
+    /// a BSDF has spatially varying roughness; unchanged where it has none.
+    #[inline]
+    pub fn with_alpha_at(&self, alpha: Option<&(Texture, Texture)>, uv: Vec2) -> Self {
+        match alpha {
+            None => *self,
+            Some((u, v)) => MicrofacetDistribution::new(self.kind, u.eval_1(uv), v.eval_1(uv), self.sample_visible),
+        }
+    }
+
     /// A distribution; α below 1e-4 is clamped to 1e-4 (Mitsuba does the same).
     pub fn new(kind: MicrofacetKind, alpha_u: f32, alpha_v: f32, sample_visible: bool) -> Self {
         MicrofacetDistribution { kind, alpha_u: alpha_u.max(1e-4), alpha_v: alpha_v.max(1e-4), sample_visible }

@@ -51,13 +51,7 @@ impl RoughConductor {
     /// The microfacet distribution at the shading point.
     #[inline]
     fn distribution_at(&self, sp: &ShadingPoint) -> MicrofacetDistribution {
-        match &self.alpha_textures {
-            None => self.distribution,
-            Some(t) => {
-                let d = &self.distribution;
-                MicrofacetDistribution::new(d.kind, t.0.eval_1(sp.uv), t.1.eval_1(sp.uv), d.sample_visible)
-            }
-        }
+        self.distribution.with_alpha_at(self.alpha_textures.as_deref(), sp.uv)
     }
 
     #[inline]

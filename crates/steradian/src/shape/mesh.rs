@@ -239,10 +239,17 @@ impl Mesh {
             return None;
         }
         let idx = self.cdf.partition_point(|&c| c <= u.x).min(self.cdf.len() - 1);
-        let lo = if idx == 0 { 0.0 } else { self.cdf[idx - 1] };
-        let pmf = self.cdf[idx] - lo;
+        let (lo, pmf) = self.cdf_interval(idx);
         let ux = ((u.x - lo) / pmf).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
         Some((idx as u32, pmf, Vec2::new(ux, u.y)))
+    }
+
+    /// Start of triangle `idx`'s interval in the area CDF, and its probability (the interval's
+    /// length). `cdf` must not be empty.
+    #[inline]
+    fn cdf_interval(&self, idx: usize) -> (f32, f32) {
+        let lo = if idx == 0 { 0.0 } else { self.cdf[idx - 1] };
+        (lo, self.cdf[idx] - lo)
     }
 
     /// Uniform by area: picks a triangle with probability proportional to its area (the
@@ -304,10 +311,7 @@ impl Mesh {
             return 0.0;
         }
         match self.spherical(reference, prim) {
-            Some(st) => {
-                let lo = if prim == 0 { 0.0 } else { self.cdf[prim as usize - 1] };
-                (self.cdf[prim as usize] - lo) / st.solid_angle() as f32
-            }
+            Some(st) => self.cdf_interval(prim as usize).1 / st.solid_angle() as f32,
             None => area_to_solid_angle(1.0 / self.area, reference, p, n),
         }
     }

@@ -76,7 +76,13 @@ impl Sphere {
     }
 
     fn uv_at(&self, p: Vec3) -> Vec2 {
-        let l = self.object_to_world.inv.transform_point3(p).normalize_or_zero();
+        Self::uv_of_local(self.object_to_world.inv.transform_point3(p))
+    }
+
+    /// Mitsuba's (φ/2π, θ/π) of a point in the sphere's local frame.
+    #[inline]
+    fn uv_of_local(l: Vec3) -> Vec2 {
+        let l = l.normalize_or_zero();
         Vec2::new(azimuth01(l.x, l.y), l.z.clamp(-1.0, 1.0).acos() * std::f32::consts::FRAC_1_PI)
     }
 
@@ -137,7 +143,7 @@ impl Sphere {
             t: hit.t,
             n,
             sh_frame: Frame::from_normal_tangent(n, dpdu),
-            uv: self.uv_at(p),
+            uv: Self::uv_of_local(l),
             dpdu,
             dpdv,
             wo: -ray.d,

@@ -4,6 +4,7 @@
 mod pcg32;
 pub mod piecewise_constant;
 mod sampler;
+mod sobol4;
 pub mod spherical_rectangle;
 pub mod spherical_triangle;
 pub mod warp;

@@ -85,7 +85,7 @@ impl PixelSampler {
     #[inline]
     fn refill(&mut self) {
         let seed = self.pixel_seed ^ (self.block.wrapping_mul(0x9e37_79b9)).rotate_left(16);
-        self.buf = sobol_burley::sample_4d(self.index, 0, seed);
+        self.buf = super::sobol4::sample_4d(self.index, seed);
         self.block += 1;
         self.pos = 0;
     }

@@ -7,7 +7,8 @@
 # 2. fetches the Stanford bunny (the PLY inside the pymeshfix 0.18.1 wheel) with pip;
 # 3. makes the 1M-triangle cube-sphere and the bunny ray sets with `bench --export` (primary,
 #    diffuse, bounce, shadow; 4M rays each) and Embree's per-ray results (--dump-hits);
-# 4. builds `cargo run --release --example raycast` (no -C target-cpu: runtime dispatch);
+# 4. builds `cargo run --release --example raycast` (for the host CPU, as .cargo/config.toml sets;
+#    the node and triangle kernels still pick AVX2 or scalar code at run time);
 # 5. alternates, N rounds: Embree traces the sets (rtcIntersect1/rtcOccluded1) on 1 and 2
 #    threads, then steradian traces the same files and compares every ray with Embree's result;
 # 6. prints the table (summary.py): the best round of each, Mrays/s, ratio, and the same

@@ -125,8 +125,14 @@ impl MicrofacetDistribution {
     /// Draws a microfacet normal m for viewing direction `v` (above the surface) and returns
     /// it with its density `pdf(v, m)`.
     pub fn sample(&self, v: Vec3, u: Vec2) -> (Vec3, f32) {
-        let m = if self.sample_visible { self.sample_visible_normal(v, u) } else { self.sample_all_normals(u) };
+        let m = self.sample_normal(v, u);
         (m, self.pdf(v, m))
+    }
+
+    /// The normal [`sample`](Self::sample) draws, without its density (for quadratures that
+    /// weight by the sampling measure itself).
+    pub fn sample_normal(&self, v: Vec3, u: Vec2) -> Vec3 {
+        if self.sample_visible { self.sample_visible_normal(v, u) } else { self.sample_all_normals(u) }
     }
 
     fn sample_all_normals(&self, u: Vec2) -> Vec3 {

@@ -184,7 +184,7 @@ fn vndf_quadrature(distr: &MicrofacetDistribution, wo: Vec3, eta: f32, g: impl F
         for (xa, wa) in x.iter().zip(&w) {
             for (xb, wb) in x.iter().zip(&w) {
                 let u = Vec2::new((0.5 * xa + 0.5) as f32, (0.5 * xb + 0.5) as f32);
-                let (m, _) = distr.sample(wo, u);
+                let m = distr.sample_normal(wo, u);
                 acc += g(m) as f64 * wa * wb;
             }
         }

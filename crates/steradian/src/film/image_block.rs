@@ -3,6 +3,9 @@
 use glam::{UVec2, Vec2};
 
 use super::filter::{ReconstructionFilter, MAX_FILTER_TAPS};
+
+/// Taps per axis of the small-footprint splat path.
+const SMALL_TAPS: usize = 8;
 use crate::Spectrum;
 
 /// Running sums of one pixel, in f64: `Σw·L`, `Σw`, `Σw·L²`, `Σw²`.
@@ -205,22 +208,49 @@ impl ImageBlock {
             return;
         }
 
-        let mut wx = [0.0f32; MAX_FILTER_TAPS];
-        let mut wy = [0.0f32; MAX_FILTER_TAPS];
-        let Some((x0, nx)) = self.axis_weights(pos.x, 0, &mut wx) else {
+        let Some((x0, lo_x, nx)) = self.axis_range(pos.x, 0) else {
             return;
         };
-        let Some((y0, ny)) = self.axis_weights(pos.y, 1, &mut wy) else {
+        let Some((y0, lo_y, ny)) = self.axis_range(pos.y, 1) else {
             return;
         };
+        if nx <= SMALL_TAPS && ny <= SMALL_TAPS {
+            // the common case (every filter up to a radius of 4 px): both axes' offsets in one
+            // small array, weighed in one branch-free pass (vector code) and no large array
+            // to clear
+            let mut w = [0.0f32; 2 * SMALL_TAPS];
+            for k in 0..SMALL_TAPS {
+                w[k] = (lo_x + k as i64) as f32 + 0.5 - pos.x;
+                w[SMALL_TAPS + k] = (lo_y + k as i64) as f32 + 0.5 - pos.y;
+            }
+            self.filter.eval_in_place(&mut w);
+            self.splat(x0, &w[..nx], y0, &w[SMALL_TAPS..SMALL_TAPS + ny], l);
+        } else {
+            let mut wx = [0.0f32; MAX_FILTER_TAPS];
+            let mut wy = [0.0f32; MAX_FILTER_TAPS];
+            for (k, wk) in wx[..nx].iter_mut().enumerate() {
+                *wk = (lo_x + k as i64) as f32 + 0.5 - pos.x;
+            }
+            for (k, wk) in wy[..ny].iter_mut().enumerate() {
+                *wk = (lo_y + k as i64) as f32 + 0.5 - pos.y;
+            }
+            self.filter.eval_in_place(&mut wx[..nx]);
+            self.filter.eval_in_place(&mut wy[..ny]);
+            self.splat(x0, &wx[..nx], y0, &wy[..ny], l);
+        }
+    }
+
+    /// Adds `l` with weight `wy[j]·wx[i]` to local pixel (x0 + i, y0 + j).
+    #[inline(always)]
+    fn splat(&mut self, x0: usize, wx: &[f32], y0: usize, wy: &[f32], l: [f64; 3]) {
         let stride = self.stride[0] as usize;
-        for (j, &wyj) in wy[..ny].iter().enumerate() {
+        for (j, &wyj) in wy.iter().enumerate() {
             if wyj == 0.0 {
                 continue;
             }
             let row = (y0 + j) * stride + x0;
             let wyj = wyj as f64;
-            for (px, &wxi) in self.data[row..row + nx].iter_mut().zip(&wx[..nx]) {
+            for (px, &wxi) in self.data[row..row + wx.len()].iter_mut().zip(wx) {
                 if wxi != 0.0 {
                     px.add_sample(wyj * wxi as f64, l);
                 }
@@ -228,15 +258,10 @@ impl ImageBlock {
         }
     }
 
-    /// Weights along one axis for the stored, writable pixels whose centres lie strictly within
-    /// the radius of `p`. Returns (first local index, count), `None` when empty.
+    /// The stored, writable pixels along one axis whose centres lie strictly within the radius
+    /// of `p`: (first local index, first film index, count), `None` when there are none.
     #[inline(always)]
-    fn axis_weights(
-        &self,
-        p: f32,
-        axis: usize,
-        w: &mut [f32; MAX_FILTER_TAPS],
-    ) -> Option<(usize, usize)> {
+    fn axis_range(&self, p: f32, axis: usize) -> Option<(usize, i64, usize)> {
         let r = self.filter.radius();
         // Pixel j qualifies when |j + 0.5 − p| < r, i.e. p − 0.5 − r < j < p − 0.5 + r.
         let lo = ((p - 0.5 - r).floor() as i64 + 1)
@@ -250,16 +275,7 @@ impl ImageBlock {
         }
         let n = (hi - lo + 1) as usize;
         debug_assert!(n <= MAX_FILTER_TAPS);
-        let n = n.min(MAX_FILTER_TAPS);
-        for (k, wk) in w[..n].iter_mut().enumerate() {
-            let d = (lo + k as i64) as f32 + 0.5 - p;
-            *wk = if d.abs() < r {
-                self.filter.eval(d)
-            } else {
-                0.0
-            };
-        }
-        Some(((lo - self.origin[axis]) as usize, n))
+        Some(((lo - self.origin[axis]) as usize, lo, n.min(MAX_FILTER_TAPS)))
     }
 }
 

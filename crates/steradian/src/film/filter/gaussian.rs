@@ -73,6 +73,12 @@ impl GaussianFilter {
         if x.abs() >= self.radius {
             return 0.0;
         }
+        self.eval_inside(x)
+    }
+
+    /// The weight at `|x| < radius` (no range test, so that loops over taps stay branch-free).
+    #[inline]
+    pub(super) fn eval_inside(&self, x: f32) -> f32 {
         (exp_neg(self.alpha * x * x) - self.bias).max(0.0)
     }
 }
@@ -88,12 +94,16 @@ fn exp_neg(y: f32) -> f32 {
     // round to nearest without SSE4.1's `roundss` (`f32::round` is a libm call on baseline
     // x86-64): adding 1.5·2²³ pushes the fraction bits out; |z| < 2²² here
     const ROUND: f32 = 12_582_912.0;
-    let n = (z + ROUND) - ROUND;
+    let shifted = z + ROUND;
+    let n = shifted - ROUND;
     let f = (z - n) * std::f32::consts::LN_2;
     // e^f, Horner form
     let p = 1.0 + f * (1.0 + f * (0.5 + f * (1.0 / 6.0 + f * (1.0 / 24.0 + f * (1.0 / 120.0 + f * (1.0 / 720.0))))));
+    // n as an integer, read from the mantissa of `shifted` (integer operations only, so that
+    // loops over taps vectorise; a float-to-int `as` cast saturates and does not);
     // n ≥ −116 keeps 2ⁿ a normal number
-    p * f32::from_bits(((n as i32 + 127) as u32) << 23)
+    let n_int = (shifted.to_bits() as i32).wrapping_sub(ROUND.to_bits() as i32);
+    p * f32::from_bits(((n_int + 127) as u32) << 23)
 }
 
 impl Default for GaussianFilter {

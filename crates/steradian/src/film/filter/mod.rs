@@ -70,6 +70,18 @@ impl ReconstructionFilter {
         }
     }
 
+    /// Replaces every offset `x` in `xs` by its weight `w(x)` (0 at and beyond the radius):
+    /// one dispatch for the lot, so that the loop compiles to vector code.
+    #[inline]
+    pub fn eval_in_place(&self, xs: &mut [f32]) {
+        let r = self.radius();
+        match self {
+            ReconstructionFilter::Box(f) => xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval(*x) } else { 0.0 }),
+            ReconstructionFilter::Tent(f) => xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval(*x) } else { 0.0 }),
+            ReconstructionFilter::Gaussian(f) => xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval_inside(*x) } else { 0.0 }),
+        }
+    }
+
     /// Separable 2D weight `w(dx)·w(dy)`.
     #[inline]
     pub fn eval_2d(&self, dx: f32, dy: f32) -> f32 {

@@ -2,7 +2,7 @@
 //! known BRDFs render like those BRDFs (statistically), the shipped MERL asset is what its
 //! documentation says, and bad input gives errors at file:line:column.
 
-use std::io::Write;
+use std::io::{Read, Write};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
@@ -68,10 +68,24 @@ fn shipped_merl_asset_is_the_tabulated_roughplastic() {
         std::fs::write(&path, gz.finish().unwrap()).unwrap();
     }
     let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
-    let shipped = MerlTable::read(&path).unwrap_or_else(|e| panic!("{e} (STERADIAN_REGENERATE_MERL=1 regenerates it)"));
+    MerlTable::read(&path).unwrap_or_else(|e| panic!("{e} (STERADIAN_REGENERATE_MERL=1 regenerates it)"));
+    // Value by value, in the file's units: the table is regenerated with f32 arithmetic that
+    // may change in its last bits (a faster sine, a different summation), and a value that
+    // close to a rounding boundary of the quantum moves by one step. A different BSDF moves
+    // most values by many steps.
+    let mut shipped = Vec::new();
+    flate2::read::GzDecoder::new(std::fs::File::open(&path).unwrap()).read_to_end(&mut shipped).unwrap();
+    assert_eq!(shipped.len(), raw.len(), "{ASSET}: wrong size");
+    assert_eq!(shipped[..12], raw[..12], "{ASSET}: wrong dimensions");
+    let values = |b: &[u8]| -> Vec<f64> { b[12..].chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect() };
+    let (a, b) = (values(&shipped), values(&raw));
+    let worst = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
+    let moved = a.iter().zip(&b).filter(|(x, y)| x != y).count();
+    eprintln!("{ASSET}: {moved} of {} values moved by one quantum", a.len());
     assert!(
-        shipped == MerlTable::from_bytes(&raw).unwrap(),
-        "{ASSET} differs from the tabulated roughplastic (STERADIAN_REGENERATE_MERL=1 regenerates it)"
+        worst <= ASSET_QUANTUM * (1.0 + 1e-9) && moved * 10_000 < a.len(),
+        "{ASSET} differs from the tabulated roughplastic: {moved} values moved, by up to {worst} \
+         (STERADIAN_REGENERATE_MERL=1 regenerates it)"
     );
     eprintln!("{ASSET}: {size} bytes (raw {} bytes)", raw.len());
     assert!(size < 3_000_000, "{size} bytes");

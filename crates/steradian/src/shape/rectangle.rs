@@ -32,6 +32,8 @@ pub struct Rectangle {
     n: Vec3,
     dpdu: Vec3,
     dpdv: Vec3,
+    /// The shading frame, the same at every point.
+    sh_frame: Frame,
     area: f32,
     /// The rectangle's own frame, when its edges are perpendicular (a true rectangle).
     frame: Option<RectangleFrame>,
@@ -56,7 +58,8 @@ impl Rectangle {
         let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| to_world.point(Vec3::new(x, y, 0.0)));
         let perpendicular = dpdu.dot(dpdv).abs() <= 1e-5 * dpdu.length() * dpdv.length();
         let frame = perpendicular.then(|| RectangleFrame::new(corner, dpdu, dpdv));
-        Rectangle { to_world: *to_world, n, dpdu, dpdv, area: dpdu.cross(dpdv).length(), frame, centre: to_world.point(Vec3::ZERO), corners }
+        let sh_frame = Frame::from_normal_tangent(n, dpdu);
+        Rectangle { to_world: *to_world, n, dpdu, dpdv, sh_frame, area: dpdu.cross(dpdv).length(), frame, centre: to_world.point(Vec3::ZERO), corners }
     }
 
     /// World normal of the front side.
@@ -108,7 +111,7 @@ impl Rectangle {
             p: self.point(uv),
             t: hit.t,
             n: self.n,
-            sh_frame: Frame::from_normal_tangent(self.n, self.dpdu),
+            sh_frame: self.sh_frame,
             uv,
             dpdu: self.dpdu,
             dpdv: self.dpdv,

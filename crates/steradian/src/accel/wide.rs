@@ -149,7 +149,7 @@ pub struct Accel {
 
 /// Hierarchies smaller than this (nodes and triangle packets) stay in a core's L2 cache
 /// (1 MiB on the machines measured): their traversal does not prefetch.
-pub(super) const PREFETCH_MIN_BYTES: usize = 1 << 20;
+const PREFETCH_MIN_BYTES: usize = 1 << 20;
 
 impl Default for Accel {
     fn default() -> Self {

@@ -137,7 +137,7 @@ impl MicrofacetDistribution {
 
     fn sample_all_normals(&self, u: Vec2) -> Vec3 {
         let (sin_phi, cos_phi, alpha2) = if self.is_isotropic() {
-            let (s, c) = crate::sampling::warp::sin_cos_turns(u.y);
+            let (s, c) = warp::sin_cos_turns(u.y);
             (s, c, self.alpha_u * self.alpha_u)
         } else {
             // φ distributed so that tan φ = (α_v/α_u)·tan(2π u)

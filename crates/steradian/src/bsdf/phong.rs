@@ -131,7 +131,7 @@ impl Phong {
             // cos α = u^(1/(n+1)) has density (n+1)/(2π)·cosⁿα about the lobe axis
             let cos_alpha = u2.x.powf(1.0 / (self.exponent + 1.0));
             let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
-            let (s, c) = crate::sampling::warp::sin_cos_turns(u2.y);
+            let (s, c) = warp::sin_cos_turns(u2.y);
             Frame::from_normal(reflect(wo)).to_world(Vec3::new(sin_alpha * c, sin_alpha * s, cos_alpha))
         } else {
             warp::square_to_cosine_hemisphere(u2)

@@ -31,8 +31,8 @@
 
 use std::f32::consts::FRAC_1_PI;
 
-use rayon::prelude::*;
 use glam::{Vec2, Vec3};
+use rayon::prelude::*;
 
 use super::fresnel::{fresnel_dielectric, reflect_about, refract_about};
 use super::microfacet::MicrofacetDistribution;
@@ -163,8 +163,8 @@ fn coating_tables(distribution: &MicrofacetDistribution, eta: f32) -> (Box<[f32;
     let rows: Vec<(f32, f64)> = (0..TABLE_SIZE)
         .into_par_iter()
         .map(|i| {
-            let t = coating_transmittance(&vndf, dir(mu(i)), eta);
-            (t, (coating_reflectance(&vndf, dir(mu(i)), 1.0 / eta) * mu(i)) as f64)
+            let wo = dir(mu(i));
+            (coating_transmittance(&vndf, wo, eta), (coating_reflectance(&vndf, wo, 1.0 / eta) * mu(i)) as f64)
         })
         .collect();
     let mut transmittance = Box::new([0f32; TABLE_SIZE]);

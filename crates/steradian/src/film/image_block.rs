@@ -3,10 +3,10 @@
 use glam::{UVec2, Vec2};
 
 use super::filter::{ReconstructionFilter, MAX_FILTER_TAPS};
+use crate::Spectrum;
 
 /// Taps per axis of the small-footprint splat path.
 const SMALL_TAPS: usize = 8;
-use crate::Spectrum;
 
 /// Running sums of one pixel, in f64: `Σw·L`, `Σw`, `Σw·L²`, `Σw²`.
 ///
@@ -219,21 +219,16 @@ impl ImageBlock {
             // small array, weighed in one branch-free pass (vector code) and no large array
             // to clear
             let mut w = [0.0f32; 2 * SMALL_TAPS];
-            for k in 0..SMALL_TAPS {
-                w[k] = (lo_x + k as i64) as f32 + 0.5 - pos.x;
-                w[SMALL_TAPS + k] = (lo_y + k as i64) as f32 + 0.5 - pos.y;
-            }
+            let (wx, wy) = w.split_at_mut(SMALL_TAPS);
+            tap_offsets(lo_x, pos.x, wx);
+            tap_offsets(lo_y, pos.y, wy);
             self.filter.eval_in_place(&mut w);
             self.splat(x0, &w[..nx], y0, &w[SMALL_TAPS..SMALL_TAPS + ny], l);
         } else {
             let mut wx = [0.0f32; MAX_FILTER_TAPS];
             let mut wy = [0.0f32; MAX_FILTER_TAPS];
-            for (k, wk) in wx[..nx].iter_mut().enumerate() {
-                *wk = (lo_x + k as i64) as f32 + 0.5 - pos.x;
-            }
-            for (k, wk) in wy[..ny].iter_mut().enumerate() {
-                *wk = (lo_y + k as i64) as f32 + 0.5 - pos.y;
-            }
+            tap_offsets(lo_x, pos.x, &mut wx[..nx]);
+            tap_offsets(lo_y, pos.y, &mut wy[..ny]);
             self.filter.eval_in_place(&mut wx[..nx]);
             self.filter.eval_in_place(&mut wy[..ny]);
             self.splat(x0, &wx[..nx], y0, &wy[..ny], l);
@@ -276,6 +271,14 @@ impl ImageBlock {
         let n = (hi - lo + 1) as usize;
         debug_assert!(n <= MAX_FILTER_TAPS);
         Some(((lo - self.origin[axis]) as usize, lo, n.min(MAX_FILTER_TAPS)))
+    }
+}
+
+/// Offsets (pixels) from `p` to the centres of the pixels `lo`, `lo + 1`, … along one axis.
+#[inline(always)]
+fn tap_offsets(lo: i64, p: f32, out: &mut [f32]) {
+    for (k, d) in out.iter_mut().enumerate() {
+        *d = (lo + k as i64) as f32 + 0.5 - p;
     }
 }
 

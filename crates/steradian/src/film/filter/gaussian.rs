@@ -15,7 +15,8 @@
 //! - Mitsuba's CPU variants evaluate a degree-9 (in x²) Remez fit of this function; steradian
 //!   evaluates `exp` by range reduction to 2ⁿ·2^f and a degree-6 polynomial for 2^f on
 //!   [−½, ½] (relative error below 10⁻⁶, a few f32 ulps, over the default filter's range;
-//!   the weights are only ever used relative to their sum). `libm`'s `expf` was 2 % of a Cornell-box render.
+//!   the weights are only ever used relative to their sum); `libm`'s `expf` was 2 % of a
+//!   Cornell-box render.
 //! - `stddev` must be positive and finite, with 4σ at most
 //!   [`MAX_FILTER_RADIUS`](super::MAX_FILTER_RADIUS) pixels.
 

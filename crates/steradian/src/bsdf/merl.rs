@@ -48,7 +48,7 @@ use std::sync::Arc;
 use glam::{DVec3, Vec2, Vec3};
 use rayon::prelude::*;
 
-use super::{cos_theta, BsdfSample, Lobe, ShadingPoint};
+use super::{cos_theta, BsdfSample, ShadingPoint};
 use crate::sampling::piecewise_constant::PiecewiseConstant2D;
 use crate::Spectrum;
 
@@ -401,12 +401,7 @@ impl Merl {
         let local = square_to_direction(u, v);
         let wi = Vec3::new(c * local.x - s * local.y, s * local.x + c * local.y, local.z);
         // the density of the cell wi lands in, recomputed as `pdf` does so the two agree
-        let pdf = self.pdf(sp, wo, wi);
-        if !super::positive(pdf) {
-            return None;
-        }
-        let weight = self.eval(sp, wo, wi) * (cos_theta(wi) / pdf);
-        Some(BsdfSample { wi, pdf, weight, lobe: Lobe::Smooth, eta: 1.0 })
+        super::smooth_sample(wi, self.pdf(sp, wo, wi), || self.eval(sp, wo, wi))
     }
 }
 

@@ -189,6 +189,17 @@ impl Bsdf {
     }
 }
 
+/// The sample of a BSDF that proposed `wi` with density `pdf`, its whole `pdf(wo, wi)` over
+/// every lobe that could have drawn it: weight `f·cos θᵢ / pdf`, with `f` evaluated only when
+/// the density is positive. `None` when it is not (or is NaN).
+#[inline]
+pub(crate) fn smooth_sample(wi: Vec3, pdf: f32, f: impl FnOnce() -> Spectrum) -> Option<BsdfSample> {
+    if !positive(pdf) {
+        return None;
+    }
+    Some(BsdfSample { wi, pdf, weight: f() * (cos_theta(wi) / pdf), lobe: Lobe::Smooth, eta: 1.0 })
+}
+
 /// True for x > 0; false for zero, negatives and NaN.
 #[inline]
 pub(crate) fn positive(x: f32) -> bool {

@@ -26,7 +26,7 @@ use glam::{Vec2, Vec3};
 
 use super::fresnel::reflect;
 use super::plastic::specular_sampling_weight;
-use super::{cos_theta, BsdfSample, Lobe, ShadingPoint};
+use super::{cos_theta, BsdfSample, ShadingPoint};
 use crate::geometry::Frame;
 use crate::radiometry::{modified_phong_normalization, phong_lobe_integral};
 use crate::sampling::warp;
@@ -136,12 +136,7 @@ impl Phong {
         } else {
             warp::square_to_cosine_hemisphere(u2)
         };
-        let pdf = self.pdf(sp, wo, wi);
-        if !super::positive(pdf) {
-            return None;
-        }
-        let weight = self.eval(sp, wo, wi) * (cos_theta(wi) / pdf);
-        Some(BsdfSample { wi, pdf, weight, lobe: Lobe::Smooth, eta: 1.0 })
+        super::smooth_sample(wi, self.pdf(sp, wo, wi), || self.eval(sp, wo, wi))
     }
 }
 

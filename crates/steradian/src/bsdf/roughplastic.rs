@@ -37,7 +37,7 @@ use rayon::prelude::*;
 use super::fresnel::{fresnel_dielectric, reflect_about, refract_about};
 use super::microfacet::MicrofacetDistribution;
 use super::plastic::{specular_probability, specular_sampling_weight, InternalScattering};
-use super::{cos_theta, positive, BsdfSample, Lobe, ShadingPoint};
+use super::{cos_theta, BsdfSample, ShadingPoint};
 use crate::radiometry::gauss_legendre;
 use crate::sampling::warp;
 use crate::texture::Texture;
@@ -142,12 +142,7 @@ impl RoughPlastic {
         } else {
             warp::square_to_cosine_hemisphere(u2)
         };
-        let pdf = self.pdf(sp, wo, wi);
-        if !positive(pdf) {
-            return None;
-        }
-        let weight = self.eval(sp, wo, wi) * (cos_theta(wi) / pdf);
-        Some(BsdfSample { wi, pdf, weight, lobe: Lobe::Smooth, eta: 1.0 })
+        super::smooth_sample(wi, self.pdf(sp, wo, wi), || self.eval(sp, wo, wi))
     }
 }
 

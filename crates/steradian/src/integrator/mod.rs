@@ -13,7 +13,7 @@ pub use direct::DirectIntegrator;
 pub use irradiance::estimate_irradiance;
 pub use light_selection::LightSelection;
 pub use measure::{measure, Measurement};
-pub use path::{parse_max_depth, EmitterVisibility, PathTracer};
+pub use path::{parse_branches, parse_max_depth, EmitterVisibility, PathTracer, DEFAULT_BRANCHES, MAX_BRANCHES};
 pub use render::{render, PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};
 
 use crate::geometry::Ray;

@@ -90,6 +90,26 @@ impl PixelSampler {
         self.pos = 0;
     }
 
+    /// Branch `b` of `n`, when one sample continues into `n` independent paths (splitting at
+    /// the first hit, `integrator/path.rs`). From the next 4-D block on, a branch's numbers are
+    /// those of sample `index·n + b` of the pixel's Sobol sequence, so the n·spp branches of a
+    /// pixel form one stratified set (past 2¹⁶ of them, and for i.i.d. sampling, the branch
+    /// draws i.i.d. numbers from a stream seeded by this one).
+    pub fn branch(&mut self, b: u32, n: u32) -> PixelSampler {
+        let seed = (self.rng.next_u32() as u64) << 32 | self.rng.next_u32() as u64;
+        let index = self.index as u64 * n as u64 + b as u64;
+        let kind = if index < SOBOL_MAX_INDEX as u64 { self.kind } else { SamplerKind::Independent };
+        PixelSampler {
+            rng: Pcg32::new(mix64(seed), b as u64),
+            kind,
+            index: index.min(u32::MAX as u64) as u32,
+            pixel_seed: self.pixel_seed,
+            block: self.block,
+            buf: [0.0; 4],
+            pos: 4,
+        }
+    }
+
     #[inline]
     pub fn next_1d(&mut self) -> f32 {
         match self.kind {
@@ -157,6 +177,32 @@ mod tests {
                 assert!(grid(&second, nx, ny).iter().all(|&c| c == 2), "pixel {pixel}: {nx}×{ny}");
             }
         }
+    }
+
+    /// The branches of a pixel's samples are one stratified set: 64 samples split 4 ways give
+    /// 256 branch points whose first pair is a (0, 8, 2)-net, like 256 unsplit samples; and
+    /// a branch's numbers differ from its parent's.
+    #[test]
+    fn branches_form_one_stratified_set() {
+        let sampler = Sampler { kind: SamplerKind::Sobol, sample_count: 64, seed: 5 };
+        for pixel in [UVec2::new(0, 0), UVec2::new(9, 30)] {
+            let mut cells = vec![0u32; 256];
+            for i in 0..64 {
+                let mut parent = sampler.pixel_sampler(pixel, 64, i);
+                let film = parent.next_2d();
+                for b in 0..4 {
+                    let mut branch = parent.branch(b, 4);
+                    let u = branch.next_2d();
+                    assert_ne!(u, film);
+                    cells[(u.y * 16.0) as usize * 16 + (u.x * 16.0) as usize] += 1;
+                }
+            }
+            assert!(cells.iter().all(|&c| c == 1), "pixel {pixel}: {cells:?}");
+        }
+        // i.i.d. sampling: branches get streams of their own
+        let mut parent = PixelSampler::independent(3, 4);
+        let (a, b) = (parent.branch(0, 2).next_1d(), parent.branch(1, 2).next_1d());
+        assert_ne!(a, b);
     }
 
     /// Unbiasedness: every dimension is uniform. Over many pixels, the mean of each of the

@@ -1,0 +1,79 @@
+//! Splitting at the first hit (`path`'s `branches`) changes the noise, never the expectation:
+//! a floor lit by two disk lights, with light bouncing between floor and a wall, renders to the
+//! same mean with 1 and with 3 branches; 3 branches lower the standard error of each camera
+//! sample; and a closed room reaches its closed-form radiance with the default branching.
+
+use std::path::Path;
+
+use steradian::integrator::{render, Integrator, RenderOptions, DEFAULT_BRANCHES};
+use steradian::sampling::SamplerKind;
+
+fn scene(branches: &str) -> String {
+    format!(
+        r#"<scene version="3.0.0">
+        <integrator type="path"><integer name="max_depth" value="5"/>{branches}</integrator>
+        <sensor type="perspective"><float name="fov" value="60"/>
+            <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="24"/><rfilter type="box"/></film></sensor>
+        <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><bsdf type="diffuse"/></shape>
+        <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate y="1" angle="80"/><translate x="-2"/></transform>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.5, 0.2"/></bsdf></shape>
+        <shape type="disk"><transform name="to_world"><scale value="0.2"/><rotate x="1" angle="180"/><translate x="-1" z="1"/></transform>
+            <emitter type="area"><rgb name="radiance" value="200"/></emitter></shape>
+        <shape type="disk"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate x="1" z="0.5"/></transform>
+            <emitter type="area"><rgb name="radiance" value="2"/></emitter></shape>
+        </scene>"#
+    )
+}
+
+fn branches_param(n: i64) -> String {
+    format!(r#"<integer name="branches" value="{n}"/>"#)
+}
+
+/// Image mean and its standard error (pixels are independent; each pixel's error from the film,
+/// which sees one value per camera sample), for i.i.d. numbers so that the error is honest.
+fn mean_and_error(branches: i64, seed: u64) -> (f64, f64) {
+    let s = steradian_mitsuba::load_string(&scene(&branches_param(branches)), Path::new("branches.xml"), Path::new("."), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let out = render(&s, &RenderOptions { spp: Some(256), seed: Some(seed), sampler: Some(SamplerKind::Independent), ..Default::default() }).unwrap();
+    let (img, err) = (out.film.develop(), out.film.develop_stderr());
+    let n = (img.width * img.height) as f64;
+    let mean = img.data.iter().step_by(3).map(|&v| v as f64).sum::<f64>() / n;
+    let se = err.data.iter().step_by(3).map(|&e| (e as f64).powi(2)).sum::<f64>().sqrt() / n;
+    (mean, se)
+}
+
+#[test]
+fn branching_keeps_the_expectation_and_lowers_the_noise() {
+    let (one, s1) = mean_and_error(1, 1);
+    let (three, s3) = mean_and_error(3, 2);
+    let tol = 5.0 * (s1 * s1 + s3 * s3).sqrt();
+    assert!(one > 0.0 && (one - three).abs() <= tol, "1 branch {one} ± {s1}, 3 branches {three} ± {s3}");
+    // Most of this scene's noise comes after the first hit (indirect light, and next-event
+    // estimation of two lights chosen at random), so three branches must cut the standard
+    // error clearly; with the branches ignored the two would agree within their own noise.
+    assert!(s3 < 0.8 * s1, "standard error with 3 branches {s3}, with 1 {s1}");
+}
+
+#[test]
+fn path_branches_by_default() {
+    let s = steradian_mitsuba::load_string(&scene(""), Path::new("branches.xml"), Path::new("."), &[]).unwrap();
+    match s.integrator {
+        Integrator::Path(p) => assert_eq!(p.branches, DEFAULT_BRANCHES),
+        other => panic!("{other:?}"),
+    }
+}
+
+#[test]
+fn branches_out_of_range_are_errors_at_the_property() {
+    for bad in [0, -2, 65] {
+        let e = steradian_mitsuba::load_string(&scene(&branches_param(bad)), Path::new("branches.xml"), Path::new("."), &[])
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("branches.xml:2:") && e.contains("branches must be between 1 and 64") && e.contains(&bad.to_string()), "{e}");
+    }
+    let e = steradian_mitsuba::load_string(&scene(r#"<float name="branches" value="2.5"/>"#), Path::new("branches.xml"), Path::new("."), &[])
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("branches.xml:2:") && e.contains("branches"), "{e}");
+}

@@ -220,6 +220,19 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         out.samples() as f64 / secs.max(1e-9) / 1e6,
         out.dropped_samples
     );
+    match (out.branches, out.pilot) {
+        (Some(n), Some(p)) => println!("path: {n} {} per camera sample, chosen by a pilot of {} samples", plural(n, "branch", "branches"), p.samples),
+        (Some(n), None) => println!("path: {n} {} per camera sample", plural(n, "branch", "branches")),
+        _ => {}
+    }
     println!("wrote {} and {}", output.display(), png.display());
     Ok(())
+}
+
+fn plural<'a>(n: u32, one: &'a str, many: &'a str) -> &'a str {
+    if n == 1 {
+        one
+    } else {
+        many
+    }
 }

@@ -1,11 +1,11 @@
 //! Splitting at the first hit (`path`'s `branches`) changes the noise, never the expectation:
 //! a floor lit by two disk lights, with light bouncing between floor and a wall, renders to the
 //! same mean with 1 and with 3 branches; 3 branches lower the standard error of each camera
-//! sample; and a closed room reaches its closed-form radiance with the default branching.
+//! sample; left unset, the count comes from a pilot that splits only where it pays.
 
 use std::path::Path;
 
-use steradian::integrator::{render, Integrator, RenderOptions, DEFAULT_BRANCHES};
+use steradian::integrator::{render, Branches, Integrator, RenderOptions, DEFAULT_BRANCHES};
 use steradian::sampling::SamplerKind;
 
 fn scene(branches: &str) -> String {
@@ -55,13 +55,34 @@ fn branching_keeps_the_expectation_and_lowers_the_noise() {
     assert!(s3 < 0.8 * s1, "standard error with 3 branches {s3}, with 1 {s1}");
 }
 
+/// Unset, `branches` is chosen by the pilot: several branches where indirect light and two
+/// lights make the light after the first hit noisy; one where it has no noise at all (a point
+/// light and `max_depth` 2: next-event estimation is exact and BSDF samples cannot hit a point).
 #[test]
-fn path_branches_by_default() {
+fn the_pilot_splits_only_where_it_pays() {
     let s = steradian_mitsuba::load_string(&scene(""), Path::new("branches.xml"), Path::new("."), &[]).unwrap();
-    match s.integrator {
-        Integrator::Path(p) => assert_eq!(p.branches, DEFAULT_BRANCHES),
-        other => panic!("{other:?}"),
-    }
+    assert!(matches!(&s.integrator, Integrator::Path(p) if p.branches == Branches::Auto), "{:?}", s.integrator);
+    let out = render(&s, &RenderOptions { spp: Some(64), ..Default::default() }).unwrap();
+    let pilot = out.pilot.expect("a pilot ran");
+    assert!(out.branches.unwrap() >= 3 && pilot.var_branch > 10.0 * pilot.var_first, "{:?} {pilot:?}", out.branches);
+
+    let point = r#"<scene version="3.0.0">
+        <integrator type="path"><integer name="max_depth" value="2"/></integrator>
+        <sensor type="perspective"><float name="fov" value="60"/>
+            <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="24"/></film></sensor>
+        <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><bsdf type="diffuse"/></shape>
+        <emitter type="point"><point name="position" x="0.5" y="0" z="1"/><rgb name="intensity" value="5"/></emitter>
+        </scene>"#;
+    let s = steradian_mitsuba::load_string(point, Path::new("point.xml"), Path::new("."), &[]).unwrap();
+    let out = render(&s, &RenderOptions { spp: Some(64), ..Default::default() }).unwrap();
+    let pilot = out.pilot.expect("a pilot ran");
+    assert_eq!(out.branches, Some(1), "{pilot:?}");
+    assert_eq!(pilot.var_branch, 0.0, "{pilot:?}");
+
+    // too small a render for a pilot: the default count
+    let out = render(&s, &RenderOptions { spp: Some(1), ..Default::default() }).unwrap();
+    assert_eq!((out.branches, out.pilot), (Some(DEFAULT_BRANCHES), None));
 }
 
 #[test]

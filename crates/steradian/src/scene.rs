@@ -115,7 +115,7 @@ impl Scene {
         Some((e, &self.emitters[e as usize]))
     }
 
-    /// Probability of choosing emitter `e` for next-event estimation (see [`light_selection`]).
+    /// Probability of choosing emitter `e` for next-event estimation (see [`LightSelection`](crate::integrator::LightSelection)).
     #[inline]
     pub fn emitter_selection_pdf(&self, e: u32) -> f32 {
         self.light_pmf[e as usize]

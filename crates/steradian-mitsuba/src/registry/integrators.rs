@@ -1,7 +1,7 @@
 //! Integrator plugins: `path`, `direct`.
 
 use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
-use steradian::integrator::{parse_branches, parse_max_depth, EmitterVisibility, LightSelection, DEFAULT_BRANCHES};
+use steradian::integrator::{parse_branches, parse_max_depth, Branches, EmitterVisibility, LightSelection};
 
 use super::{at_property, unknown_type};
 use crate::error::LoadError;
@@ -44,8 +44,12 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
                 let pos = p.position("rr_depth").unwrap_or(&node.pos);
                 return Err(LoadError::at(pos, format!("{}: 'rr_depth' must be at least 1", node.desc())));
             }
-            // steradian's own: paths continued from each first hit (see integrator/path.rs)
-            let branches = parse_branches(p.get_int("branches")?.unwrap_or(DEFAULT_BRANCHES as i64)).map_err(at_property(node, &["branches"]))?;
+            // steradian's own: paths continued from each first hit (integrator/path.rs); unset,
+            // a pilot chooses (integrator/branching.rs)
+            let branches = match p.get_int("branches")? {
+                None => Branches::Auto,
+                Some(v) => parse_branches(v).map_err(at_property(node, &["branches"]))?,
+            };
             Integrator::Path(PathTracer { max_depth, rr_depth, emitters: visibility(p.get_bool("hide_emitters")?), light_selection: light_selection(node)?, branches })
         }
         "direct" => {

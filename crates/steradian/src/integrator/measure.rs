@@ -90,7 +90,7 @@ mod tests {
             block.put(Vec2::new(1.5, 0.5), crate::Spectrum::splat(5.0));
         }
         film.merge(&block);
-        let out = RenderOutput { film, spp: 2, spp_requested: 2, dropped_samples: 0, elapsed: Duration::ZERO, interrupted: false };
+        let out = RenderOutput { film, branches: None, pilot: None, spp: 2, spp_requested: 2, dropped_samples: 0, elapsed: Duration::ZERO, interrupted: false };
         let m = Measurement::from_render(&out, 0, Quantity::Radiance);
         let se = out.film.develop_stderr();
         for c in 0..3 {

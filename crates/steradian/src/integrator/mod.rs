@@ -1,6 +1,7 @@
 //! Integrators: estimators of the radiance arriving along a camera ray, and the driver that
 //! turns them into images.
 
+mod branching;
 mod direct;
 mod irradiance;
 mod light_selection;
@@ -9,11 +10,12 @@ mod mis;
 mod path;
 mod render;
 
+pub use branching::{Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
 pub use direct::DirectIntegrator;
 pub use irradiance::estimate_irradiance;
 pub use light_selection::LightSelection;
 pub use measure::{measure, Measurement};
-pub use path::{parse_branches, parse_max_depth, EmitterVisibility, PathTracer, DEFAULT_BRANCHES, MAX_BRANCHES};
+pub use path::{parse_branches, parse_max_depth, Branches, EmitterVisibility, PathTracer, DEFAULT_BRANCHES, MAX_BRANCHES};
 pub use render::{render, PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};
 
 use crate::geometry::Ray;

@@ -6,7 +6,7 @@
 //! | `rr_depth`      | integer | 5       | depth from which Russian roulette may end paths |
 //! | `hide_emitters` | boolean | false   | emitters seen directly by camera rays contribute nothing |
 //! | `light_selection` | string | `uniform` | steradian's own: `uniform` or `power` (see `light_selection.rs`) |
-//! | `branches`      | integer | 4       | steradian's own: paths continued from each camera ray's first hit (1 to 64; 1 = Mitsuba's estimator) |
+//! | `branches`      | integer | chosen  | steradian's own: paths continued from each camera ray's first hit (1 to 64; 1 = Mitsuba's estimator); unset, a pilot chooses 1 to 16 (`branching.rs`) |
 //!
 //! At every vertex with a non-delta BSDF one light is chosen uniformly and sampled (next-event
 //! estimation), and the BSDF is sampled to continue the path; both estimators of emitted light
@@ -24,11 +24,12 @@
 //! `branches × spp` Sobol points. Most of an image's noise comes after the first hit (in the
 //! Cornell box, 98 % of relMSE at 64 spp is indirect light), so this buys more than the same
 //! time spent on more camera samples: at equal time, relMSE against Mitsuba's references
-//! falls by 1.4× (cornell), 1.6× (materials) and 1.9× (veach) with 4 branches, which are
-//! close to the best counts for all three (measured, benches/README.md). A sample costs more,
-//! so `spp` (camera samples, Mitsuba's meaning) buys less noise per second with `branches` = 1
-//! than with 4 only in scenes whose noise comes from the pixel footprint itself, such as
-//! direct light from point sources with `max_depth` = 2.
+//! falls by 1.4× (cornell), 1.6× (materials) and 1.9× (veach) with 4 branches against 1
+//! (measured, benches/README.md). A sample costs more, and where the light after the first hit
+//! has little noise (direct light from point sources with `max_depth` = 2, for one) splitting
+//! only adds work; so when the scene does not set `branches`, a pilot before the render
+//! measures both sides and picks the count with the least noise per unit of work
+//! (`branching.rs`). `spp` keeps Mitsuba's meaning: camera samples per pixel.
 
 use glam::Vec3;
 
@@ -57,26 +58,47 @@ pub struct PathTracer {
     pub rr_depth: u32,
     pub emitters: EmitterVisibility,
     pub light_selection: LightSelection,
-    /// Independent paths continued from each camera ray's first surface hit (≥ 1).
-    pub branches: u32,
+    /// How many independent paths continue from each camera ray's first surface hit.
+    pub branches: Branches,
+}
+
+/// The number of paths that continue from a camera ray's first hit.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Branches {
+    /// Chosen per render from a short pilot (`branching.rs`); [`DEFAULT_BRANCHES`] where no
+    /// pilot runs.
+    Auto,
+    /// This many (1 to [`MAX_BRANCHES`]; 1 = Mitsuba's estimator).
+    Fixed(u32),
+}
+
+impl Branches {
+    /// The count [`PathTracer::li`] uses.
+    #[inline]
+    pub fn count(self) -> u32 {
+        match self {
+            Branches::Auto => DEFAULT_BRANCHES,
+            Branches::Fixed(n) => n,
+        }
+    }
 }
 
 impl Default for PathTracer {
     fn default() -> Self {
-        PathTracer { max_depth: None, rr_depth: 5, emitters: EmitterVisibility::Visible, light_selection: LightSelection::Uniform, branches: DEFAULT_BRANCHES }
+        PathTracer { max_depth: None, rr_depth: 5, emitters: EmitterVisibility::Visible, light_selection: LightSelection::Uniform, branches: Branches::Auto }
     }
 }
 
-/// Paths continued from each first hit by default (see the module docs).
+/// Paths continued from each first hit where no pilot chooses (see the module docs).
 pub const DEFAULT_BRANCHES: u32 = 4;
 
 /// The most branches a camera sample may split into.
 pub const MAX_BRANCHES: u32 = 64;
 
 /// Checks a `branches` value: 1 to [`MAX_BRANCHES`].
-pub fn parse_branches(v: i64) -> Result<u32, String> {
+pub fn parse_branches(v: i64) -> Result<Branches, String> {
     match v {
-        v if (1..=MAX_BRANCHES as i64).contains(&v) => Ok(v as u32),
+        v if (1..=MAX_BRANCHES as i64).contains(&v) => Ok(Branches::Fixed(v as u32)),
         v => Err(format!("branches must be between 1 and {MAX_BRANCHES}, got {v}")),
     }
 }
@@ -90,9 +112,34 @@ pub fn parse_max_depth(v: i64) -> Result<Option<u32>, String> {
     }
 }
 
+/// Counts the rays a path traces (the pilot's cost measure); the renderer uses [`NoTally`],
+/// which compiles to nothing.
+pub(super) trait Tally {
+    fn ray(&mut self);
+}
+
+/// No counting.
+pub(super) struct NoTally;
+
+impl Tally for NoTally {
+    #[inline(always)]
+    fn ray(&mut self) {}
+}
+
+/// Rays traced (closest-hit and shadow rays alike).
+#[derive(Default)]
+pub(super) struct RayCount(pub u32);
+
+impl Tally for RayCount {
+    #[inline(always)]
+    fn ray(&mut self) {
+        self.0 += 1;
+    }
+}
+
 /// The state of a path between two vertices.
 #[derive(Clone, Copy, Debug)]
-struct PathState {
+pub(super) struct PathState {
     /// Throughput: the product of f·cos/pdf (and 1/q for Russian roulette) so far.
     beta: Spectrum,
     /// Product of the relative indices of refraction crossed (for Russian roulette).
@@ -106,79 +153,96 @@ struct PathState {
     prev_lobe: Lobe,
 }
 
+impl PathState {
+    fn camera(ray: &Ray) -> PathState {
+        PathState { beta: Spectrum::ONE, eta: 1.0, depth: 0, ray: *ray, prev_p: ray.o, prev_pdf: 1.0, prev_lobe: Lobe::Delta }
+    }
+}
+
 impl PathTracer {
     /// Radiance arriving along `camera_ray` (W/(m²·sr)): one camera sample, split into
-    /// [`PathTracer::branches`] paths at its first hit.
+    /// [`Branches::count`] paths at its first hit.
     pub fn li(&self, scene: &Scene, camera_ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
-        if self.max_depth == Some(0) {
-            return Spectrum::ZERO;
-        }
-        let st = PathState { beta: Spectrum::ONE, eta: 1.0, depth: 0, ray: *camera_ray, prev_p: camera_ray.o, prev_pdf: 1.0, prev_lobe: Lobe::Delta };
-        self.walk(scene, st, sampler, self.branches)
-    }
-
-    /// Follows a path from `st` and returns the light it gathers; the first surface vertex it
-    /// meets at depth 0 is left by `branches` paths.
-    fn walk(&self, scene: &Scene, mut st: PathState, sampler: &mut PixelSampler, branches: u32) -> Spectrum {
         let mut result = Spectrum::ZERO;
-        loop {
-            let show_emitters = st.depth > 0 || self.emitters == EmitterVisibility::Visible;
-            let Some(si) = scene.intersect(&st.ray) else {
-                if let (Some(env), true) = (scene.environment, show_emitters) {
-                    let le = scene.emitters[env as usize].radiance(-st.ray.d, Vec3::ZERO, glam::Vec2::ZERO);
-                    let w = match st.prev_lobe {
-                        Lobe::Delta => 1.0,
-                        Lobe::Smooth => power_heuristic(st.prev_pdf, scene.pdf_emitter_direction(env, st.prev_p, st.ray.d, &SurfacePoint::AT_INFINITY)),
-                    };
-                    result += st.beta * le * w;
-                }
-                break;
-            };
-
-            if let (Some((e, emitter)), true) = (scene.area_emitter(&si), show_emitters) {
-                let le = emitter.radiance(si.wo, si.n, si.uv);
-                if le != Spectrum::ZERO {
-                    let w = match st.prev_lobe {
-                        Lobe::Delta => 1.0,
-                        Lobe::Smooth => power_heuristic(st.prev_pdf, scene.pdf_emitter_direction(e, st.prev_p, st.ray.d, &si.surface_point())),
-                    };
-                    result += st.beta * le * w;
-                }
-            }
-
-            if let Some(max) = self.max_depth {
-                if st.depth + 1 >= max {
-                    break;
-                }
-            }
-
-            if st.depth == 0 && branches > 1 {
-                let mut sum = Spectrum::ZERO;
-                for b in 0..branches {
-                    let mut branch = sampler.branch(b, branches);
-                    let (direct, next) = self.vertex(scene, &si, st, &mut branch);
-                    sum += direct;
-                    if let Some(next) = next {
-                        sum += self.walk(scene, next, &mut branch, 1);
-                    }
-                }
-                return result + sum / branches as f32;
-            }
-            let (direct, next) = self.vertex(scene, &si, st, sampler);
-            result += direct;
-            match next {
-                Some(next) => st = next,
-                None => break,
-            }
+        let Some((si, st)) = self.first_hit(scene, camera_ray, &mut result, &mut NoTally) else { return result };
+        let n = self.branches.count();
+        if n == 1 {
+            self.continue_from(scene, &si, st, sampler, &mut result, &mut NoTally);
+            return result;
         }
-        result
+        let mut sum = Spectrum::ZERO;
+        for b in 0..n {
+            let mut branch = sampler.branch(b, n);
+            let mut l = Spectrum::ZERO;
+            self.continue_from(scene, &si, st, &mut branch, &mut l, &mut NoTally);
+            sum += l;
+        }
+        result + sum / n as f32
     }
 
-    /// One surface vertex: the light arriving there by next-event estimation (weighted by the
-    /// throughput so far), and the path state after sampling the BSDF and Russian roulette
-    /// (`None`: the path ends).
+    /// Traces the camera ray: adds to `result` the light emitted towards the camera by what it
+    /// hits, and returns the first hit if the path may continue from there.
     #[inline(always)]
-    fn vertex(&self, scene: &Scene, si: &SurfaceInteraction, mut st: PathState, sampler: &mut PixelSampler) -> (Spectrum, Option<PathState>) {
+    pub(super) fn first_hit(&self, scene: &Scene, camera_ray: &Ray, result: &mut Spectrum, tally: &mut impl Tally) -> Option<(SurfaceInteraction, PathState)> {
+        if self.max_depth == Some(0) {
+            return None;
+        }
+        let st = PathState::camera(camera_ray);
+        self.arrive(scene, &st, result, tally).map(|si| (si, st))
+    }
+
+    /// Continues a path from its vertex `si` (reached in state `st`) to its end, adding the
+    /// light it gathers to `result`.
+    #[inline(always)]
+    pub(super) fn continue_from(&self, scene: &Scene, si: &SurfaceInteraction, st: PathState, sampler: &mut PixelSampler, result: &mut Spectrum, tally: &mut impl Tally) {
+        let mut next = self.vertex(scene, si, st, sampler, result, tally);
+        while let Some(st) = next {
+            let Some(si) = self.arrive(scene, &st, result, tally) else { break };
+            next = self.vertex(scene, &si, st, sampler, result, tally);
+        }
+    }
+
+    /// Traces `st.ray`: adds the light emitted by what it hits (environment or area emitter),
+    /// weighted by MIS against the BSDF sample that chose the ray, and returns the hit if the
+    /// path may continue from it (`max_depth`).
+    #[inline(always)]
+    fn arrive(&self, scene: &Scene, st: &PathState, result: &mut Spectrum, tally: &mut impl Tally) -> Option<SurfaceInteraction> {
+        let show_emitters = st.depth > 0 || self.emitters == EmitterVisibility::Visible;
+        tally.ray();
+        let Some(si) = scene.intersect(&st.ray) else {
+            if let (Some(env), true) = (scene.environment, show_emitters) {
+                let le = scene.emitters[env as usize].radiance(-st.ray.d, Vec3::ZERO, glam::Vec2::ZERO);
+                let w = match st.prev_lobe {
+                    Lobe::Delta => 1.0,
+                    Lobe::Smooth => power_heuristic(st.prev_pdf, scene.pdf_emitter_direction(env, st.prev_p, st.ray.d, &SurfacePoint::AT_INFINITY)),
+                };
+                *result += st.beta * le * w;
+            }
+            return None;
+        };
+
+        if let (Some((e, emitter)), true) = (scene.area_emitter(&si), show_emitters) {
+            let le = emitter.radiance(si.wo, si.n, si.uv);
+            if le != Spectrum::ZERO {
+                let w = match st.prev_lobe {
+                    Lobe::Delta => 1.0,
+                    Lobe::Smooth => power_heuristic(st.prev_pdf, scene.pdf_emitter_direction(e, st.prev_p, st.ray.d, &si.surface_point())),
+                };
+                *result += st.beta * le * w;
+            }
+        }
+
+        match self.max_depth {
+            Some(max) if st.depth + 1 >= max => None,
+            _ => Some(si),
+        }
+    }
+
+    /// One surface vertex: adds the light arriving there by next-event estimation (weighted by
+    /// the throughput so far) to `result`, and returns the path state after sampling the BSDF
+    /// and Russian roulette (`None`: the path ends).
+    #[inline(always)]
+    fn vertex(&self, scene: &Scene, si: &SurfaceInteraction, mut st: PathState, sampler: &mut PixelSampler, result: &mut Spectrum, tally: &mut impl Tally) -> Option<PathState> {
         let bsdf = scene.bsdf(si);
         let sp = ShadingPoint::new(si);
         let wo = si.to_local(si.wo);
@@ -192,23 +256,25 @@ impl PathTracer {
         let u_rr = sampler.next_1d();
 
         // next-event estimation
-        let mut direct = Spectrum::ZERO;
         if bsdf.has_smooth_lobe() {
             if let Some(es) = scene.sample_emitter_direction(si.p, u_light) {
                 let wi = si.to_local(es.wi);
                 let f = bsdf.eval(&sp, wo, wi) * wi.z.abs();
-                if f != Spectrum::ZERO && scene.unoccluded(si.p, si.n, &es) {
-                    let w = match es.support {
-                        Support::Delta => 1.0,
-                        Support::Extended => power_heuristic(es.pdf, bsdf.pdf(&sp, wo, wi)),
-                    };
-                    direct = st.beta * f * es.weight * w;
+                if f != Spectrum::ZERO {
+                    tally.ray();
+                    if scene.unoccluded(si.p, si.n, &es) {
+                        let w = match es.support {
+                            Support::Delta => 1.0,
+                            Support::Extended => power_heuristic(es.pdf, bsdf.pdf(&sp, wo, wi)),
+                        };
+                        *result += st.beta * f * es.weight * w;
+                    }
                 }
             }
         }
 
         // continue the path by sampling the BSDF
-        let Some(bs) = bsdf.sample(&sp, wo, u1, u2) else { return (direct, None) };
+        let bs = bsdf.sample(&sp, wo, u1, u2)?;
         st.beta *= bs.weight;
         st.eta *= bs.eta;
         st.prev_p = si.p;
@@ -219,15 +285,15 @@ impl PathTracer {
 
         let beta_max = st.beta.max_element();
         if !is_positive(beta_max) {
-            return (direct, None);
+            return None;
         }
         if st.depth >= self.rr_depth {
             let q = (beta_max * st.eta * st.eta).min(0.95);
             if u_rr >= q {
-                return (direct, None);
+                return None;
             }
             st.beta /= q;
         }
-        (direct, Some(st))
+        Some(st)
     }
 }

@@ -16,7 +16,9 @@ use rayon::prelude::*;
 
 use crate::film::{Film, ImageBlock};
 use crate::geometry::Ray;
-use crate::integrator::estimate_irradiance;
+use crate::integrator::branching::{self, Pilot};
+use crate::integrator::path::DEFAULT_BRANCHES;
+use crate::integrator::{estimate_irradiance, Branches, Integrator, PathTracer};
 use crate::sampling::{PixelSampler, SamplerKind};
 use crate::scene::Scene;
 use crate::sensor::Sensor;
@@ -76,6 +78,10 @@ pub struct RenderOptions<'a> {
 #[derive(Debug)]
 pub struct RenderOutput {
     pub film: Film,
+    /// Paths continued from each camera ray's first hit (`path` only).
+    pub branches: Option<u32>,
+    /// What the pilot that chose `branches` measured, when one ran.
+    pub pilot: Option<Pilot>,
     /// Samples per pixel actually in the film.
     pub spp: u32,
     pub spp_requested: u32,
@@ -165,6 +171,17 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
         .build()
         .map_err(|e| RenderError::ThreadPool(e.to_string()))?;
 
+    // `path` with `branches` unset: a pilot picks the count (branching.rs)
+    let mut pilot = None;
+    let integrator = match &scene.integrator {
+        Integrator::Path(p) if p.branches == Branches::Auto => {
+            pilot = pool.install(|| branching::pilot(p, scene, sensor, width, height, spp, sampler.seed));
+            let n = pilot.map_or(DEFAULT_BRANCHES, |p| p.branches);
+            Integrator::Path(PathTracer { branches: Branches::Fixed(n), ..p.clone() })
+        }
+        other => other.clone(),
+    };
+
     let mut spp_done = 0u32;
     let mut interrupted = false;
     for pass in bounds.windows(2) {
@@ -206,7 +223,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
                                 let mut pos = pixel.as_vec2() + s.next_2d();
                                 let film_uv = pos / Vec2::new(width as f32, height as f32);
                                 let l = match opts.quantity {
-                                    PixelQuantity::Sensor => sensor.measure(scene, &scene.integrator, film_uv, &mut s),
+                                    PixelQuantity::Sensor => sensor.measure(scene, &integrator, film_uv, &mut s),
                                     PixelQuantity::SurfaceIrradiance => surface_irradiance(scene, sensor, film_uv, &mut s),
                                 };
                                 if meter {
@@ -246,8 +263,14 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
             }
         }
     }
+    let branches = match &integrator {
+        Integrator::Path(p) => Some(p.branches.count()),
+        Integrator::Direct(_) => None,
+    };
     Ok(RenderOutput {
         film,
+        branches,
+        pilot,
         spp: spp_done,
         spp_requested: spp,
         dropped_samples: dropped.load(Ordering::Relaxed),

@@ -91,6 +91,16 @@ impl Sensor {
         }
     }
 
+    /// The ray a sample starts with, for cameras (through film position `film_uv`) and
+    /// radiance meters; `None` for irradiance meters, whose samples start on a surface.
+    pub fn pilot_ray(&self, film_uv: Vec2, sampler: &mut PixelSampler) -> Option<Ray> {
+        match &self.kind {
+            SensorKind::RadianceMeter(m) => Some(m.ray()),
+            SensorKind::IrradianceMeter(_) => None,
+            SensorKind::Perspective(_) | SensorKind::ThinLens(_) => self.camera_ray(film_uv, sampler),
+        }
+    }
+
     /// What the sensor measures.
     pub fn quantity(&self) -> Quantity {
         match self.kind {

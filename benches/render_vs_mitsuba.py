@@ -25,7 +25,10 @@ with the scene's reference (`<scene>-ref.exr`, thousands of spp rendered by Mits
            subtracted (see benches/README.md).
   speed-up = Mitsuba t@1e-3 / steradian t@1e-3  (> 1: steradian reaches the target sooner)
 
-and the geometric mean of the speed-ups over the scenes. Scenes steradian cannot load yet
+and the geometric mean of the speed-ups over the scenes: the headline figure. A second,
+floor-corrected figure accounts for the reference's own noise, a floor f that relMSE against
+the reference never goes below (f from ../shared/scenes/PERF.md, known scenes only):
+relMSE(spp) = a/spp + f, so the time to reach 1e-3 is time * (relMSE - f) / (1e-3 - f). Scenes steradian cannot load yet
 (e.g. an unknown BSDF plugin) are skipped with the reason.
 
 The repository is self-contained: scenes and references are read from
@@ -47,6 +50,14 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REF_DIR = os.path.join(REPO, "crates", "steradian-mitsuba", "tests", "reference")
 TARGET = 1e-3
+# The references' own noise: relMSE of the reference against the truth, from the shared
+# scenes' PERF.md ("ref-noise floor": Mitsuba's per-sample variance over the reference's spp).
+REF_FLOOR = {"cornell": 2.1e-5, "furnace": 6.2e-6, "pointlight": 1.5e-6, "materials": 2.8e-5, "veach": 7.1e-5}
+
+
+def t_target_floor(t, rel, floor):
+    """Time to relMSE TARGET against a reference whose own noise adds `floor`."""
+    return None if floor is None else t * max(rel - floor, 0.0) / (TARGET - floor)
 EPS = 1e-2
 
 
@@ -259,7 +270,8 @@ def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, l
             st = dict(time_s=st_wall, cpu_s=statistics.median(r["cpu"] for r in st_runs),
                       render_s=statistics.median(r.get("render_s", float("nan")) for r in st_runs),
                       times=[round(r["wall"], 4) for r in st_runs],
-                      relmse=st_rel, mean_ratio=st_ratio, t_target_s=st_wall * st_rel / TARGET)
+                      relmse=st_rel, mean_ratio=st_ratio, t_target_s=st_wall * st_rel / TARGET,
+                      t_target_floor_s=t_target_floor(st_wall, st_rel, REF_FLOOR.get(sname)))
             entry = dict(scene=sname, spp=spp, res=st_runs[0].get("res"), steradian=st, mitsuba={})
             for v in variants:
                 img = peers[v].image
@@ -269,23 +281,28 @@ def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, l
                 rel, ratio = metrics(np, img, refimg)
                 t = statistics.median(x[0] for x in mi_runs[v])
                 tt = t * rel / TARGET
+                ttf = t_target_floor(t, rel, REF_FLOOR.get(sname))
+                stf = st["t_target_floor_s"]
                 entry["mitsuba"][v] = dict(
                     time_s=t, cpu_s=statistics.median(x[1] for x in mi_runs[v]),
                     times=[round(x[0], 4) for x in mi_runs[v]],
                     load_s=peers[v].load_s, first_render_s=peers[v].cold_s,
                     relmse=rel, mean_ratio=ratio, t_target_s=tt,
                     time_ratio=t / st_wall,
-                    speedup=tt / st["t_target_s"] if st["t_target_s"] > 0 else None)
+                    speedup=tt / st["t_target_s"] if st["t_target_s"] > 0 else None,
+                    t_target_floor_s=ttf,
+                    speedup_floor=ttf / stf if ttf is not None and stf else None)
             result["scenes"].append(entry)
             del peers
     finally:
         if not keep:
             shutil.rmtree(workdir, ignore_errors=True)
     result["loadavg_end"] = [round(x, 2) for x in os.getloadavg()]
-    result["geomean_speedup"] = {}
+    result["geomean_speedup"], result["geomean_speedup_floor"] = {}, {}
     for v in variants:
-        sp = [e["mitsuba"][v]["speedup"] for e in result["scenes"] if e["mitsuba"][v]["speedup"]]
-        result["geomean_speedup"][v] = math.exp(sum(map(math.log, sp)) / len(sp)) if sp else None
+        for key, out in (("speedup", "geomean_speedup"), ("speedup_floor", "geomean_speedup_floor")):
+            sp = [e["mitsuba"][v][key] for e in result["scenes"] if e["mitsuba"][v][key]]
+            result[out][v] = math.exp(sum(map(math.log, sp)) / len(sp)) if sp else None
     return result
 
 
@@ -300,23 +317,27 @@ def report(res, out=sys.stdout):
     p("own s = the render time steradian prints itself (no start-up, load or writing)")
     p()
     hdr = f"{'scene':<11} {'renderer':<12} {'spp':>4} {'time s':>7} {'own s':>6} {'cpu s':>7} {'relMSE':>9} " \
-          f"{'mean ratio R,G,B':<22} {'t@1e-3 s':>8} {'speed-up':>8}"
+          f"{'mean ratio R,G,B':<22} {'t@1e-3 s':>8} {'speed-up':>8} {'floor-corr.':>11}"
     p(hdr)
     p("-" * len(hdr))
     for e in res["scenes"]:
         s = e["steradian"]
         p(f"{e['scene']:<11} {'steradian':<12} {e['spp']:>4} {fmt_t(s['time_s']):>7} {fmt_t(s['render_s']):>6} {fmt_t(s['cpu_s']):>7} "
           f"{s['relmse']:>9.3e} {','.join(f'{x:.4f}' for x in s['mean_ratio']):<22} "
-          f"{fmt_t(s['t_target_s']):>8} {'':>8}")
+          f"{fmt_t(s['t_target_s']):>8} {'':>8} {'':>11}")
         for v, m in e["mitsuba"].items():
             sp = "-" if m["speedup"] is None else f"{m['speedup']:.2f}x"
+            spf = "-" if m.get("speedup_floor") is None else f"{m['speedup_floor']:.2f}x"
             p(f"{'':<11} {v:<12} {e['spp']:>4} {fmt_t(m['time_s']):>7} {'':>6} {fmt_t(m['cpu_s']):>7} "
               f"{m['relmse']:>9.3e} {','.join(f'{x:.4f}' for x in m['mean_ratio']):<22} "
-              f"{fmt_t(m['t_target_s']):>8} {sp:>8}")
+              f"{fmt_t(m['t_target_s']):>8} {sp:>8} {spf:>11}")
     p()
     for v, g in res["geomean_speedup"].items():
         n = sum(1 for e in res["scenes"] if e["mitsuba"][v]["speedup"])
         p(f"geometric mean speed-up vs {v} over {n} scene(s): " + ("-" if g is None else f"{g:.2f}x"))
+        gf = res.get("geomean_speedup_floor", {}).get(v)
+        if gf is not None:
+            p(f"  with the references' noise floor subtracted (secondary): {gf:.2f}x")
     for s in res["skipped"]:
         p(f"skipped {s['scene']}: {s['reason']}")
 

@@ -48,6 +48,7 @@ use crate::sampling::PixelSampler;
 use crate::scene::Scene;
 use crate::sensor::{Quantity, Sensor};
 use crate::spectrum::luminance;
+use crate::Spectrum;
 
 /// Rays' worth of work for making a camera ray and splatting its value on the film (filter
 /// weights over up to 5 × 5 pixels): measured on a Cornell box, where these take about as long as
@@ -127,18 +128,15 @@ pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, he
             let mut samples = Vec::with_capacity(per_pixel as usize);
             for _ in 0..per_pixel {
                 let film_uv = (pixel.as_vec2() + s.next_2d()) / Vec2::new(width as f32, height as f32);
-                let Some(ray) = sensor.pilot_ray(film_uv, &mut s) else { continue };
-                let (mut first, mut rays) = (crate::Spectrum::ZERO, RayCount::default());
+                let Some(ray) = sensor.start_ray(film_uv, &mut s) else { continue };
+                let (mut first, mut rays) = (Spectrum::ZERO, RayCount::default());
                 let hit = probe.first_hit(scene, &ray, &mut first, &mut rays);
                 let mut sample = PilotSample { first: luminance(first) as f64, x: [0.0; PILOT_BRANCHES], rays_first: rays.0, rays_branch: 0 };
                 if let Some((si, st)) = hit {
-                    for (b, xb) in sample.x.iter_mut().enumerate() {
-                        let mut branch = s.branch(b as u32, PILOT_BRANCHES as u32);
-                        let (mut l, mut rays) = (crate::Spectrum::ZERO, RayCount::default());
-                        probe.continue_from(scene, &si, st, &mut branch, &mut l, &mut rays);
-                        *xb = luminance(l) as f64;
+                    probe.for_each_branch(scene, &si, st, &mut s, PILOT_BRANCHES as u32, |b, l, rays: RayCount| {
+                        sample.x[b] = luminance(l) as f64;
                         sample.rays_branch += rays.0;
-                    }
+                    });
                 }
                 if sample.first.is_finite() && sample.x.iter().all(|x| x.is_finite()) {
                     samples.push(sample);
@@ -167,13 +165,13 @@ fn choose(pixels: &[Vec<PilotSample>]) -> Pilot {
         let k = ((values.len() as f64 * (1.0 - CLAMP_TAIL)) as usize).min(values.len() - 1);
         *values.select_nth_unstable_by(k, f64::total_cmp).1
     };
+    let m = PILOT_BRANCHES as f64;
     let mut stats = Vec::with_capacity(pixels.len());
     for p in pixels.iter().filter(|p| p.len() >= 2) {
         let n = p.len() as f64;
         let (mut y, mut y2, mut d) = (0.0, 0.0, 0.0);
         for q in p {
             let x = q.x.map(|x| x.min(clamp));
-            let m = PILOT_BRANCHES as f64;
             let xm = x.iter().sum::<f64>() / m;
             let yq = q.first.min(clamp) + xm;
             y += yq;
@@ -191,7 +189,7 @@ fn choose(pixels: &[Vec<PilotSample>]) -> Pilot {
     for &(mu, s2, vw) in &stats {
         let w = 1.0 / (mu * mu + eps);
         var_branch += w * vw;
-        var_first += w * (s2 - vw / PILOT_BRANCHES as f64);
+        var_first += w * (s2 - vw / m);
     }
     let branches = if var_branch <= 0.0 || cost_branch <= 0.0 {
         1

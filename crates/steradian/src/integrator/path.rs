@@ -40,9 +40,8 @@ use crate::emitter::Support;
 use crate::geometry::{Ray, SurfaceInteraction};
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
-use crate::shape::SurfacePoint;
+use crate::shape::{is_positive, SurfacePoint};
 use crate::Spectrum;
-use crate::shape::is_positive;
 
 /// Whether directly visible emitters are drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -119,6 +118,7 @@ pub(super) trait Tally {
 }
 
 /// No counting.
+#[derive(Default)]
 pub(super) struct NoTally;
 
 impl Tally for NoTally {
@@ -171,13 +171,22 @@ impl PathTracer {
             return result;
         }
         let mut sum = Spectrum::ZERO;
+        self.for_each_branch(scene, &si, st, sampler, n, |_, l, _: NoTally| sum += l);
+        result + sum / n as f32
+    }
+
+    /// Continues `n` independent paths from the first hit `si` (reached in state `st`), branch
+    /// `b` with the numbers of `sampler.branch(b, n)`, and hands each one's light and tally to
+    /// `visit(b, light, tally)`. The pilot (`branching.rs`) splits through here too, so that
+    /// it measures exactly what the render does.
+    #[inline(always)]
+    pub(super) fn for_each_branch<T: Tally + Default>(&self, scene: &Scene, si: &SurfaceInteraction, st: PathState, sampler: &mut PixelSampler, n: u32, mut visit: impl FnMut(usize, Spectrum, T)) {
         for b in 0..n {
             let mut branch = sampler.branch(b, n);
-            let mut l = Spectrum::ZERO;
-            self.continue_from(scene, &si, st, &mut branch, &mut l, &mut NoTally);
-            sum += l;
+            let (mut l, mut tally) = (Spectrum::ZERO, T::default());
+            self.continue_from(scene, si, st, &mut branch, &mut l, &mut tally);
+            visit(b as usize, l, tally);
         }
-        result + sum / n as f32
     }
 
     /// Traces the camera ray: adds to `result` the light emitted towards the camera by what it

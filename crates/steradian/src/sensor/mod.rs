@@ -66,16 +66,13 @@ impl Sensor {
     /// meters their quantity (film position plays no part).
     #[inline]
     pub fn measure(&self, scene: &Scene, integrator: &Integrator, film_uv: Vec2, sampler: &mut PixelSampler) -> Spectrum {
-        match &self.kind {
-            SensorKind::RadianceMeter(m) => integrator.li(scene, &m.ray(), sampler),
-            SensorKind::IrradianceMeter(m) => {
-                let ps = scene.shapes[m.shape as usize].sample_position(sampler.next_2d());
-                estimate_irradiance(scene, integrator, ps.p, ps.n, sampler)
-            }
-            SensorKind::Perspective(_) | SensorKind::ThinLens(_) => match self.camera_ray(film_uv, sampler) {
-                Some(ray) => integrator.li(scene, &ray, sampler),
-                None => Spectrum::ZERO,
-            },
+        if let SensorKind::IrradianceMeter(m) = &self.kind {
+            let ps = scene.shapes[m.shape as usize].sample_position(sampler.next_2d());
+            return estimate_irradiance(scene, integrator, ps.p, ps.n, sampler);
+        }
+        match self.start_ray(film_uv, sampler) {
+            Some(ray) => integrator.li(scene, &ray, sampler),
+            None => Spectrum::ZERO,
         }
     }
 
@@ -93,7 +90,8 @@ impl Sensor {
 
     /// The ray a sample starts with, for cameras (through film position `film_uv`) and
     /// radiance meters; `None` for irradiance meters, whose samples start on a surface.
-    pub fn pilot_ray(&self, film_uv: Vec2, sampler: &mut PixelSampler) -> Option<Ray> {
+    #[inline]
+    pub fn start_ray(&self, film_uv: Vec2, sampler: &mut PixelSampler) -> Option<Ray> {
         match &self.kind {
             SensorKind::RadianceMeter(m) => Some(m.ray()),
             SensorKind::IrradianceMeter(_) => None,

@@ -6,7 +6,8 @@
 use std::path::Path;
 
 use steradian::integrator::{render, Branches, Integrator, RenderOptions, DEFAULT_BRANCHES};
-use steradian::sampling::SamplerKind;
+
+mod common;
 
 fn scene(branches: &str) -> String {
     format!(
@@ -30,17 +31,8 @@ fn branches_param(n: i64) -> String {
     format!(r#"<integer name="branches" value="{n}"/>"#)
 }
 
-/// Image mean and its standard error (pixels are independent; each pixel's error from the film,
-/// which sees one value per camera sample), for i.i.d. numbers so that the error is honest.
 fn mean_and_error(branches: i64, seed: u64) -> (f64, f64) {
-    let s = steradian_mitsuba::load_string(&scene(&branches_param(branches)), Path::new("branches.xml"), Path::new("."), &[])
-        .unwrap_or_else(|e| panic!("{e}"));
-    let out = render(&s, &RenderOptions { spp: Some(256), seed: Some(seed), sampler: Some(SamplerKind::Independent), ..Default::default() }).unwrap();
-    let (img, err) = (out.film.develop(), out.film.develop_stderr());
-    let n = (img.width * img.height) as f64;
-    let mean = img.data.iter().step_by(3).map(|&v| v as f64).sum::<f64>() / n;
-    let se = err.data.iter().step_by(3).map(|&e| (e as f64).powi(2)).sum::<f64>().sqrt() / n;
-    (mean, se)
+    common::mean_and_error(&scene(&branches_param(branches)), "branches.xml", seed)
 }
 
 #[test]

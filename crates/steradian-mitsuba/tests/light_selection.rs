@@ -3,8 +3,7 @@
 
 use std::path::Path;
 
-use steradian::integrator::{render, RenderOptions};
-use steradian::sampling::SamplerKind;
+mod common;
 
 fn scene(rule: &str) -> String {
     format!(
@@ -22,15 +21,8 @@ fn scene(rule: &str) -> String {
     )
 }
 
-/// Image mean and its standard error (pixels are independent; each pixel's error from the film).
 fn mean_and_error(rule: &str, seed: u64) -> (f64, f64) {
-    let s = steradian_mitsuba::load_string(&scene(rule), Path::new("lights.xml"), Path::new("."), &[]).unwrap_or_else(|e| panic!("{e}"));
-    let out = render(&s, &RenderOptions { spp: Some(256), seed: Some(seed), sampler: Some(SamplerKind::Independent), ..Default::default() }).unwrap();
-    let (img, err) = (out.film.develop(), out.film.develop_stderr());
-    let n = (img.width * img.height) as f64;
-    let mean = img.data.iter().step_by(3).map(|&v| v as f64).sum::<f64>() / n;
-    let se = err.data.iter().step_by(3).map(|&e| (e as f64).powi(2)).sum::<f64>().sqrt() / n;
-    (mean, se)
+    common::mean_and_error(&scene(rule), "lights.xml", seed)
 }
 
 #[test]

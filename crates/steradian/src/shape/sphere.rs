@@ -179,24 +179,31 @@ impl Sphere {
             return super::direction_from_position(reference, &self.sample_position(u), 0);
         };
         let axis = (self.center - reference) / dc;
-        let local = warp::square_to_uniform_cone(u, cos_max);
-        let wi = Frame::from_normal(axis).to_world(local).normalize();
-        // Nearest intersection: dist = dc·cos θ − sqrt(r² − dc²·sin² θ); clamped at grazing.
-        let cos_t = local.z as f64;
-        let sin2_t = (local.x as f64).powi(2) + (local.y as f64).powi(2);
-        let (dc64, r64) = (dc as f64, self.radius as f64);
-        let dist = (dc64 * cos_t - (r64 * r64 - dc64 * dc64 * sin2_t).max(0.0).sqrt()) as f32;
+        // cos θ uniform in [cos θmax, 1]: 1 − cos θ = u.y·(1 − cos θmax) (as in
+        // `warp::square_to_uniform_cone`, inlined for the terms reused below)
+        let om = u.y * one_minus;
+        let cos_t = 1.0 - om;
+        let sin_t = (om * (2.0 - om)).max(0.0).sqrt();
+        let (s, c) = warp::sin_cos_turns(u.x);
+        // |axis| = 1 and the frame is orthonormal, so wi is a unit vector up to rounding
+        let wi = Frame::from_normal(axis).to_world(Vec3::new(sin_t * c, sin_t * s, cos_t));
+        // Nearest intersection: dist = dc·cos θ − √(r² − dc²·sin² θ). The radicand is a
+        // difference of near-equal terms at the silhouette; with r² = dc²·sin² θmax it is
+        // dc²·(cos θ − cos θmax)(cos θ + cos θmax), and cos θ − cos θmax = (1 − cos θmax)(1 − u.y)
+        // without cancellation, so single precision keeps the point on the sphere.
+        let dist = dc * (cos_t - (one_minus * (1.0 - u.y) * (cos_t + cos_max)).max(0.0).sqrt());
         if !is_positive_finite(dist) {
             return None;
         }
-        let p = reference + wi * dist;
-        // Put p exactly on the surface (it only moves by rounding error).
-        let p = self.center + (p - self.center).normalize() * self.radius;
+        // Put p exactly on the surface (it only moves by rounding error); the same unit vector
+        // is the normal.
+        let radial = (reference + wi * dist - self.center).normalize();
+        let p = self.center + radial * self.radius;
         let pdf = 1.0 / (2.0 * PI * one_minus);
         if !(pdf.is_finite() && pdf > 0.0) {
             return None;
         }
-        let n = self.normal_at(p);
+        let n = if self.flip { -radial } else { radial };
         let uv = match uv {
             super::UvRequest::Compute => self.uv_at(p),
             super::UvRequest::Skip => Vec2::ZERO,

@@ -256,13 +256,14 @@ impl PathTracer {
         let sp = ShadingPoint::new(si);
         let wo = si.to_local(si.wo);
 
-        // Six numbers per vertex, drawn in a fixed order so that with Sobol points each pair
-        // is a well-stratified 2-D projection: light (2-D), BSDF direction (2-D), lobe
-        // choice, Russian roulette (drawn even when unused, to keep the layout fixed).
+        // Six numbers per vertex, drawn in a fixed order (even when unused, to keep the layout
+        // fixed) so that with Sobol points each 2-D draw is dimensions (0, 1) of a block and
+        // the 1-D draws fill the light's block: light (2-D), lobe choice and Russian roulette
+        // (1-D), BSDF direction (2-D). Two 4-D blocks per vertex.
         let u_light = sampler.next_2d();
-        let u2 = sampler.next_2d();
         let u1 = sampler.next_1d();
         let u_rr = sampler.next_1d();
+        let u2 = sampler.next_2d();
 
         // next-event estimation
         if bsdf.has_smooth_lobe() {

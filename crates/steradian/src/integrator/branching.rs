@@ -31,9 +31,10 @@
 //! N* is rounded and clamped to 1..=[`MAX_AUTO_BRANCHES`]. The pilot spends at most 1/16 of
 //! the render's camera samples; a render too small for that gets
 //! [`DEFAULT_BRANCHES`](super::DEFAULT_BRANCHES).
-//! Choices on the reference scenes (seed 0): cornell 4, materials 16, veach 7, plastics 5,
+//! Choices on the reference scenes (seed 0): cornell 3, materials 11, veach 7, plastics 4,
 //! textures 6, pointlight 4, furnace 16 (whose first hits, a convex object under a uniform
-//! sky, decide almost nothing). Over seeds 0–7: cornell 3–4, materials 10–16, veach 4–11. In
+//! sky, decide almost nothing). Over seeds: cornell 3–4, materials 7–16, veach 4–15 (the
+//! estimate of V_b is noisy; the efficiency is flat near the optimum). In
 //! equal-time sweeps the best fixed counts are 4 for cornell, 16 for materials (4: 2.95,
 //! 8: 2.85, 16: 2.68 user-s × relMSE/10⁻³) and 4 for veach, with efficiency within about
 //! 10 % from 3 to 8. A point light with `max_depth` = 2, whose light after the first hit has

@@ -88,12 +88,13 @@ pub fn square_to_uniform_hemisphere(u: Vec2) -> Vec3 {
 
 pub const UNIFORM_HEMISPHERE_PDF: f32 = 1.0 / (2.0 * PI);
 
-/// Uniform direction in the cone of half-angle θmax around +z (`cos_max = cos θmax`);
-/// density 1 / (2π (1 − cos θmax)).
+/// Uniform direction in the cone of half-angle θmax around +z, given `one_minus` =
+/// 1 − cos θmax; density 1 / (2π (1 − cos θmax)). The caller passes 1 − cos θmax rather than
+/// cos θmax because for a tiny cone it can compute it without cancellation (a sphere seen
+/// from afar: sin² θmax / (1 + cos θmax)), which `1.0 - cos_max` in single precision cannot.
 #[inline]
-pub fn square_to_uniform_cone(u: Vec2, cos_max: f32) -> Vec3 {
-    // cos θ = 1 − u·(1 − cosmax), written to keep precision for tiny cones.
-    let one_minus = 1.0 - cos_max;
+pub fn square_to_uniform_cone(u: Vec2, one_minus: f32) -> Vec3 {
+    // cos θ = 1 − u·(1 − cos θmax); sin² θ from the same product, so no cancellation either
     let cos_t = 1.0 - u.y * one_minus;
     let sin2 = (u.y * one_minus * (2.0 - u.y * one_minus)).max(0.0);
     let sin_t = sin2.sqrt();
@@ -195,7 +196,7 @@ mod tests {
         let mut r = Pcg32::new(1, 1);
         for cos_max in [0.0f32, 0.5, 0.99, 1.0 - 1e-6] {
             for _ in 0..1000 {
-                let w = square_to_uniform_cone(u2(&mut r), cos_max);
+                let w = square_to_uniform_cone(u2(&mut r), 1.0 - cos_max);
                 assert!((w.length() - 1.0).abs() < 1e-4);
                 assert!(w.z >= cos_max - 1e-6);
             }

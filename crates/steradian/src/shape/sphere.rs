@@ -179,14 +179,11 @@ impl Sphere {
             return super::direction_from_position(reference, &self.sample_position(u), 0);
         };
         let axis = (self.center - reference) / dc;
-        // cos θ uniform in [cos θmax, 1]: 1 − cos θ = u.y·(1 − cos θmax) (as in
-        // `warp::square_to_uniform_cone`, inlined for the terms reused below)
-        let om = u.y * one_minus;
-        let cos_t = 1.0 - om;
-        let sin_t = (om * (2.0 - om)).max(0.0).sqrt();
-        let (s, c) = warp::sin_cos_turns(u.x);
+        // cos θ uniform in [cos θmax, 1], with the cone's 1 − cos θmax free of cancellation
+        let local = warp::square_to_uniform_cone(u, one_minus);
+        let cos_t = local.z;
         // |axis| = 1 and the frame is orthonormal, so wi is a unit vector up to rounding
-        let wi = Frame::from_normal(axis).to_world(Vec3::new(sin_t * c, sin_t * s, cos_t));
+        let wi = Frame::from_normal(axis).to_world(local);
         // Nearest intersection: dist = dc·cos θ − √(r² − dc²·sin² θ). The radicand is a
         // difference of near-equal terms at the silhouette; with r² = dc²·sin² θmax it is
         // dc²·(cos θ − cos θmax)(cos θ + cos θmax), and cos θ − cos θmax = (1 − cos θmax)(1 − u.y)

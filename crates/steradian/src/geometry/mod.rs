@@ -4,6 +4,7 @@ mod aabb;
 mod frame;
 
 mod ray;
+pub mod trig;
 mod transform;
 
 pub use aabb::Aabb;

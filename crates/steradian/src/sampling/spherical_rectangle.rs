@@ -12,6 +12,8 @@ use glam::{Vec2, Vec3};
 
 use std::f32::consts::TAU;
 
+use crate::geometry::trig::acos;
+
 /// A rectangle's own frame, computed once per rectangle: the corner, unit vectors along its
 /// two (perpendicular) edges, their normal, and the edge lengths (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -121,24 +123,6 @@ impl SphericalRectangle {
     }
 }
 
-/// arccos(x) for x ∈ [−1, 1] (clamped), to 2·10⁻⁸ rad: Abramowitz & Stegun 4.4.46's
-/// polynomial, arccos x = √(1−x)·Σ aᵢxⁱ for x ≥ 0 and π − arccos(−x) below. Four of these make
-/// a spherical rectangle's solid angle at every light sample, where libm's `acosf` costs
-/// several times more.
-#[inline]
-fn acos(x: f32) -> f32 {
-    const A: [f32; 8] = [std::f32::consts::FRAC_PI_2, -0.214_598_8, 0.088_978_99, -0.050_174_3, 0.030_891_88, -0.017_088_126, 0.006_670_09, -0.001_262_491_1];
-    let ax = x.abs().min(1.0);
-    // Horner's rule with plain products: `mul_add` would call libm's fmaf without FMA hardware
-    let p = ((((((A[7] * ax + A[6]) * ax + A[5]) * ax + A[4]) * ax + A[3]) * ax + A[2]) * ax + A[1]) * ax + A[0];
-    let r = (1.0 - ax).sqrt() * p;
-    if x < 0.0 {
-        std::f32::consts::PI - r
-    } else {
-        r
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use glam::DVec3;
@@ -208,16 +192,6 @@ mod tests {
         let se = (p * (1.0 - p) / n as f64).sqrt();
         let f = hits as f64 / n as f64;
         assert!((f - p).abs() <= 4.0 * se, "{f} vs {p} ± {se}");
-    }
-    #[test]
-    fn fast_acos_matches_libm() {
-        for i in 0..=20_000 {
-            let x = -1.0 + i as f32 * 1e-4;
-            let err = (acos(x) as f64 - (x as f64).acos()).abs();
-            assert!(err <= 4e-7, "acos({x}): error {err}");
-        }
-        assert_eq!(acos(1.5), 0.0);
-        assert!((acos(-1.5) - std::f32::consts::PI).abs() < 1e-6);
     }
     #[test]
     fn sampled_uv_locates_the_point() {

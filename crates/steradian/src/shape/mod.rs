@@ -293,7 +293,7 @@ pub(crate) fn is_positive_finite(x: f32) -> bool {
 /// φ / 2π in [0, 1) for a local point.
 #[inline]
 pub(crate) fn azimuth01(x: f32, y: f32) -> f32 {
-    let mut v = y.atan2(x) * (0.5 * std::f32::consts::FRAC_1_PI);
+    let mut v = crate::geometry::trig::atan2(y, x) * (0.5 * std::f32::consts::FRAC_1_PI);
     if v < 0.0 {
         v += 1.0;
     }

@@ -83,7 +83,7 @@ impl Sphere {
     #[inline]
     fn uv_of_local(l: Vec3) -> Vec2 {
         let l = l.normalize_or_zero();
-        Vec2::new(azimuth01(l.x, l.y), l.z.clamp(-1.0, 1.0).acos() * std::f32::consts::FRAC_1_PI)
+        Vec2::new(azimuth01(l.x, l.y), crate::geometry::trig::acos(l.z) * std::f32::consts::FRAC_1_PI)
     }
 
     /// Both roots of |o + t·d − c|² = r² for the unit direction d, in increasing order.

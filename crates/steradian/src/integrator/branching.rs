@@ -2,50 +2,61 @@
 //! `branches` unset: the splitting factor that gives the least noise per unit of work, chosen
 //! by a short pilot before the render.
 //!
-//! Splitting a camera sample into N branches at its first hit costs C₁ + N·C₂ (C₁: the camera
-//! ray, its intersection and the film splat; C₂: one branch) and leaves the variance
-//! V_b + V_w/N (V_b: the variance of what the first hit alone decides, such as where in the
-//! pixel the ray lands and what the hit emits; V_w: the variance of one branch given the first
-//! hit). Their product, the inverse of the efficiency, is least at
-//!
-//!   N* = √(C₁·V_w / (C₂·V_b))
-//!
-//! (the optimal splitting factor of Arvo and Kirk, "Particle transport and image synthesis",
+//! Splitting a camera sample into N branches at its first hit costs C(N) = C₁ + N·C₂ (C₁: the
+//! camera ray, its intersection and the film splat; C₂: one branch) and leaves a pixel with
+//! some variance V(N); the render's efficiency is 1/(V(N)·C(N)). With i.i.d. numbers
+//! V(N) = V_b + V_w/N (V_b: the variance of what the first hit alone decides, such as where in
+//! the pixel the ray lands; V_w: that of one branch given the first hit), and the product is
+//! least at N* = √(C₁·V_w / (C₂·V_b)) (Arvo and Kirk, "Particle transport and image synthesis",
 //! SIGGRAPH 1990; Rath et al., "EARS", SIGGRAPH 2022, learn the same factor per region).
 //!
-//! The pilot estimates the four numbers from samples of its own (i.i.d., seeded from the
-//! render's seed, never put on the film): up to 8192 camera samples, spread over up to
-//! 32 × 32 pixels evenly placed on the film (all in the one pixel of a radiance meter), each
-//! split into M = 4 branches with values X₁ … X₄ after the first hit's emission P.
-//! - V_w: the mean over samples of the branches' sample variance;
-//! - V_b: the variance of Y = P + mean(X) over a pixel's samples, minus V_w/M (V_b is a
-//!   difference, and M = 4 rather than 2 keeps the subtracted part, and its noise, small);
-//! - both are summed over pixels with weights 1/(μ² + ε), μ the pixel's mean and ε = 10⁻² ×
-//!   the film's mean squared: relative error, what noise looks like, without letting black
-//!   pixels dominate; values above the 99.9th percentile of the pilot's values are clamped
-//!   first, so that a few fireflies do not decide alone;
-//! - costs are counted in rays traced (closest-hit and shadow rays alike), plus
+//! The render does not use i.i.d. numbers, though: a pixel's camera samples are one stratified
+//! Sobol set, and its N·spp branches another (`sampling/sampler.rs`). Stratification removes
+//! most of V_b (pixel edges, first hits), so the best N is larger than N* from i.i.d. samples:
+//! an earlier pilot built that way chose 3 branches for the Cornell box, where 16 reach the
+//! same true error in 26 % less time at 64 spp. So this pilot renders as the render does:
+//! - 256 pixels drawn at random over the film (every pixel of a smaller film, the one pixel
+//!   of a radiance meter), each rendered with N = 1, 2, 4, 8 and 16 branches, every time in R independent
+//!   replicates of S camera samples (the render's sampler, seeded apart from the render, never
+//!   put on the film; R = 8, or more on films with few pixels);
+//! - V(N): the variance of a replicate's pixel value over the replicates, times S (one camera
+//!   sample's worth), summed over pixels with weights 1/(μ² + ε), μ the pixel's mean over all
+//!   its replicates and ε = 10⁻² × the film's mean squared: relative error, what noise looks
+//!   like, without letting black pixels dominate. Values above the 99.9th percentile of the
+//!   pilot's values (first-hit emission and branch values alike) are clamped first, so that a
+//!   few fireflies do not decide alone;
+//! - C(N): rays traced per camera sample (closest-hit and shadow rays alike), plus
 //!   [`CAMERA_SAMPLE_COST`] rays' worth for generating a camera ray and splatting its value.
-//!   A count, not a clock, so that the choice (and the image) is the same on every run.
+//!   A count, not a clock, so that the choice (and the image) is the same on every run;
+//! - V(N) = V_b + V_w/N and C(N) = C₁ + N·C₂ are fitted to the five candidates (see
+//!   [`best_count`]) and the candidate with the least modelled V·C is chosen. Fitting pools
+//!   the candidates' noise; powers of two keep N·spp a power of two, where Sobol points are
+//!   best stratified.
 //!
-//! N* is rounded and clamped to 1..=[`MAX_AUTO_BRANCHES`]. The pilot spends at most 1/16 of
-//! the render's camera samples; a render too small for that gets
+//! S is the largest power of two up to min(spp, 16) for which the pilot's work (Σ(1 + N) = 36
+//! paths per pixel, replicate and sample) stays within 1/4 of a one-branch render's (at most
+//! 1.2 % of a 256 × 256, 64-spp render with 16 branches); a render too small for S = 1 gets
 //! [`DEFAULT_BRANCHES`](super::DEFAULT_BRANCHES).
-//! Choices on the reference scenes (seed 0): cornell 3, materials 11, veach 7, plastics 4,
-//! textures 6, pointlight 4, furnace 16 (whose first hits, a convex object under a uniform
-//! sky, decide almost nothing). Over seeds: cornell 3–4, materials 7–16, veach 4–15 (the
-//! estimate of V_b is noisy; the efficiency is flat near the optimum). In
-//! equal-time sweeps the best fixed counts are 4 for cornell, 16 for materials (4: 2.95,
-//! 8: 2.85, 16: 2.68 user-s × relMSE/10⁻³) and 4 for veach, with efficiency within about
-//! 10 % from 3 to 8. A point light with `max_depth` = 2, whose light after the first hit has
-//! no noise at all, gets 1, where 4 branches would take 2.2× the time for the same image.
+//!
+//! Choices on the reference scenes at 64 spp, seeds 0–3: cornell, materials, veach, plastics
+//! and furnace 16 at every seed; textures 16, 8, 4, 4 (textured first hits); pointlight 8, 4,
+//! 16, 2 (most of its error at 16 branches is on edges, which few of the 256 pixels hit, so
+//! its choice is noisy: at 64 spp, 16 branches take 1.7× the time 4 do for the same error).
+//! Where the light after the first hit is noisy, V_b comes out near zero or below it: at 16
+//! stratified camera samples per pixel little is left of what the first hit decides. Against
+//! the pilot that took V_b from i.i.d. samples (cornell 3, materials 11, veach 7), equal-time
+//! error at 16 spp (user-s × relative variance from the spread between 3 seeds, so no
+//! reference noise) falls by 26 % on cornell (3.80 → 2.83) and is within noise on materials
+//! (2.62 → 2.62) and veach (9.40 → 9.89). A point light with
+//! `max_depth` = 2, whose light after the first hit has no noise at all, gets 1, where
+//! 4 branches would take 2.2× the time for the same image.
 
 use glam::{UVec2, Vec2};
 use rayon::prelude::*;
 
 use super::path::{Branches, RayCount};
 use super::PathTracer;
-use crate::sampling::PixelSampler;
+use crate::sampling::{mix64, Sampler};
 use crate::scene::Scene;
 use crate::sensor::{Quantity, Sensor};
 use crate::spectrum::luminance;
@@ -56,24 +67,27 @@ use crate::Spectrum;
 /// tracing and shading one ray.
 pub const CAMERA_SAMPLE_COST: f64 = 1.0;
 
+/// The counts the pilot tries, in increasing order.
+pub const CANDIDATES: [u32; 5] = [1, 2, 4, 8, 16];
+
 /// The largest count the pilot chooses.
-pub const MAX_AUTO_BRANCHES: u32 = 16;
+pub const MAX_AUTO_BRANCHES: u32 = CANDIDATES[CANDIDATES.len() - 1];
 
-/// Pixels of the pilot along each film axis (at most).
-const PILOT_GRID: u32 = 32;
+/// Pixels of the pilot, at most: drawn at random over the film (a regular grid would miss
+/// the edges, which hold most of what the first hit decides: 80 % of the point-light
+/// scene's error at 16 branches sits on 1 % of its pixels).
+const PILOT_PIXELS: u32 = 256;
 
-/// Camera samples of the pilot, at most (8 per pixel of a full grid).
-const PILOT_SAMPLES: u64 = 8192;
+/// Replicates per pilot pixel, at least; films with fewer than [`PILOT_UNITS`] pixels (a
+/// meter's one) get more, so that every pilot has about as many degrees of freedom.
+const PILOT_REPLICATES: u32 = 8;
+const PILOT_UNITS: u32 = 1024;
 
-/// The fewest camera samples per pilot pixel that still estimate a pixel's variance.
-const PILOT_MIN_SAMPLES_PER_PIXEL: u64 = 2;
+/// Camera samples per replicate, at most.
+const PILOT_MAX_SPP: u32 = 16;
 
-/// The pilot's share of the render's camera samples, at most.
-const PILOT_BUDGET_FRACTION: u64 = 16;
-
-/// Branches per pilot camera sample: V_b comes out as a difference, s²(Y) − V_w/M, which is
-/// less noisy the smaller V_w/M is.
-const PILOT_BRANCHES: usize = 4;
+/// The pilot's work, at most, as a fraction of a one-branch render's (1/4).
+const PILOT_BUDGET_FRACTION: u64 = 4;
 
 /// The share of the pilot's largest values that are clamped (see [`choose`]).
 const CLAMP_TAIL: f64 = 1e-3;
@@ -84,159 +98,248 @@ const PILOT_SALT: u64 = 0x7069_6c6f_7420_7321;
 /// What the pilot measured.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Pilot {
-    /// Camera samples taken.
+    /// Camera samples taken (all candidates).
     pub samples: u64,
-    /// Rays' worth of work per camera sample before the split (C₁) and per branch (C₂).
+    /// Camera samples per replicate (S) and replicates per pixel (R).
+    pub spp: u32,
+    pub replicates: u32,
+    /// Relative variance of one camera sample's value, V(N), and rays' worth of work per
+    /// camera sample, C(N), for each of [`CANDIDATES`].
+    pub variance: [f64; CANDIDATES.len()],
+    pub cost: [f64; CANDIDATES.len()],
+    /// Least-squares fits C(N) = C₁ + N·C₂ ...
     pub cost_first: f64,
     pub cost_branch: f64,
-    /// Relative variances: of what the first hit decides (V_b), and of one branch (V_w).
+    /// ... and V(N) = V_b + V_w/N: the variances of what the first hit decides (V_b) and of
+    /// one branch (V_w), as the render's sampler leaves them. Where stratification makes
+    /// V(N) fall faster than 1/N, V_b comes out below its true value, even negative.
     pub var_first: f64,
     pub var_branch: f64,
     /// The chosen count.
     pub branches: u32,
 }
 
-/// One pilot camera sample: luminance emitted at the first hit and of each branch, and the
-/// rays traced before and after the split.
-#[derive(Clone, Copy, Debug)]
-struct PilotSample {
-    first: f64,
-    x: [f64; PILOT_BRANCHES],
-    rays_first: u32,
-    rays_branch: u32,
+/// One pilot pixel: per candidate, the values (luminance) of its R·S camera samples, each the
+/// first hit's emission followed by the N branches' values, and the rays they traced.
+#[derive(Clone, Debug, Default)]
+struct PilotPixel {
+    values: [Vec<f64>; CANDIDATES.len()],
+    rays: [u64; CANDIDATES.len()],
 }
 
 /// The branch count for `tracer` on this film: the pilot's choice, or `None` when the render
 /// is too small for a pilot or the sensor is an irradiance meter (whose samples start on a
-/// surface, not with a camera ray).
-pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, height: u32, spp: u32, seed: u64) -> Option<Pilot> {
+/// surface, not with a camera ray). `sampler` is the render's (kind and seed).
+pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, height: u32, spp: u32, sampler: &Sampler) -> Option<Pilot> {
     if sensor.quantity() == Quantity::Irradiance {
         return None;
     }
-    let (gx, gy) = (width.min(PILOT_GRID), height.min(PILOT_GRID));
-    let budget = width as u64 * height as u64 * spp as u64 / PILOT_BUDGET_FRACTION;
-    let per_pixel = budget.min(PILOT_SAMPLES) / (gx as u64 * gy as u64);
-    if per_pixel < PILOT_MIN_SAMPLES_PER_PIXEL {
+    let film_pixels = width as u64 * height as u64;
+    let pixels = (PILOT_PIXELS as u64).min(film_pixels) as u32;
+    let replicates = PILOT_REPLICATES.max(PILOT_UNITS.div_ceil(pixels));
+    let paths_per_sample: u64 = CANDIDATES.iter().map(|&n| 1 + n as u64).sum();
+    let budget = width as u64 * height as u64 * spp as u64 * 2 / PILOT_BUDGET_FRACTION;
+    let mut s = spp.min(PILOT_MAX_SPP).max(1);
+    s = 1 << s.ilog2();
+    while s > 1 && pixels as u64 * replicates as u64 * s as u64 * paths_per_sample > budget {
+        s /= 2;
+    }
+    if pixels as u64 * replicates as u64 * s as u64 * paths_per_sample > budget {
         return None;
     }
-    let probe = PathTracer { branches: Branches::Fixed(PILOT_BRANCHES as u32), ..tracer.clone() };
-    let pixels: Vec<Vec<PilotSample>> = (0..gx * gy)
+    let samplers: Vec<Sampler> =
+        (0..replicates).map(|r| Sampler { kind: sampler.kind, sample_count: s, seed: mix64(sampler.seed ^ PILOT_SALT).wrapping_add(r as u64) }).collect();
+    let measured: Vec<PilotPixel> = (0..pixels)
         .into_par_iter()
         .map(|i| {
-            // pixel centres of an even grid over the film
-            let pixel = UVec2::new(((i % gx) * 2 + 1) * width / (2 * gx), ((i / gx) * 2 + 1) * height / (2 * gy));
-            let mut s = PixelSampler::independent(seed ^ PILOT_SALT, pixel.y as u64 * width as u64 + pixel.x as u64);
-            let mut samples = Vec::with_capacity(per_pixel as usize);
-            for _ in 0..per_pixel {
-                let film_uv = (pixel.as_vec2() + s.next_2d()) / Vec2::new(width as f32, height as f32);
-                let Some(ray) = sensor.start_ray(film_uv, &mut s) else { continue };
-                let (mut first, mut rays) = (Spectrum::ZERO, RayCount::default());
-                let hit = probe.first_hit(scene, &ray, &mut first, &mut rays);
-                let mut sample = PilotSample { first: luminance(first) as f64, x: [0.0; PILOT_BRANCHES], rays_first: rays.0, rays_branch: 0 };
-                if let Some((si, st)) = hit {
-                    probe.for_each_branch(scene, &si, st, &mut s, PILOT_BRANCHES as u32, |b, l, rays: RayCount| {
-                        sample.x[b] = luminance(l) as f64;
-                        sample.rays_branch += rays.0;
-                    });
-                }
-                if sample.first.is_finite() && sample.x.iter().all(|x| x.is_finite()) {
-                    samples.push(sample);
+            // every pixel of a small film; otherwise pixels drawn at random over the film
+            let k = if pixels as u64 == film_pixels { i as u64 } else { mix64(sampler.seed ^ PILOT_SALT ^ mix64(i as u64)) % film_pixels };
+            let pixel = UVec2::new((k % width as u64) as u32, (k / width as u64) as u32);
+            let mut out = PilotPixel::default();
+            for (c, &n) in CANDIDATES.iter().enumerate() {
+                let probe = PathTracer { branches: Branches::Fixed(n), ..tracer.clone() };
+                let values = &mut out.values[c];
+                values.reserve((replicates * s * (1 + n)) as usize);
+                for sampler in &samplers {
+                    for index in 0..s {
+                        let mut ps = sampler.pixel_sampler(pixel, width, index);
+                        let film_uv = (pixel.as_vec2() + ps.next_2d()) / Vec2::new(width as f32, height as f32);
+                        let start = values.len();
+                        values.resize(start + 1 + n as usize, 0.0);
+                        let Some(ray) = sensor.start_ray(film_uv, &mut ps) else { continue };
+                        let (mut first, mut rays) = (Spectrum::ZERO, RayCount::default());
+                        let hit = probe.first_hit(scene, &ray, &mut first, &mut rays);
+                        values[start] = luminance(first) as f64;
+                        out.rays[c] += rays.0 as u64;
+                        if let Some((si, st)) = hit {
+                            probe.for_each_branch(scene, &si, st, &mut ps, n, |b, l, rays: RayCount| {
+                                values[start + 1 + b] = luminance(l) as f64;
+                                out.rays[c] += rays.0 as u64;
+                            });
+                        }
+                        // a NaN or infinite sample never reaches the film: it counts as black
+                        for v in &mut values[start..] {
+                            if !v.is_finite() {
+                                *v = 0.0;
+                            }
+                        }
+                    }
                 }
             }
-            samples
+            out
         })
         .collect();
-    Some(choose(&pixels))
+    Some(choose(&measured, replicates, s))
 }
 
-/// N* from the pilot's samples (see the module docs), summed in pixel order.
-fn choose(pixels: &[Vec<PilotSample>]) -> Pilot {
-    let all = || pixels.iter().flatten();
-    let samples = all().count() as u64;
-    let per_sample = |rays: u64| rays as f64 / samples.max(1) as f64;
-    let cost_first = CAMERA_SAMPLE_COST + per_sample(all().map(|p| p.rays_first as u64).sum());
-    let cost_branch = per_sample(all().map(|p| p.rays_branch as u64).sum()) / PILOT_BRANCHES as f64;
+/// The count with the least V(N)·C(N), from the pilot's pixels (see the module docs).
+fn choose(pixels: &[PilotPixel], replicates: u32, spp: u32) -> Pilot {
+    let (r, s) = (replicates as usize, spp as usize);
+    let samples_per_candidate = (pixels.len() * r * s) as f64;
     // Fireflies (rare, bright paths) would decide the estimates alone: values are clamped at
     // the (1 − CLAMP_TAIL) quantile of all values. This only shapes the choice of N, never
-    // the image; it lowers V_w more than V_b, so it errs towards fewer branches.
-    let mut values: Vec<f64> = all().flat_map(|p| std::iter::once(p.first).chain(p.x)).collect();
-    let clamp = if values.is_empty() {
+    // the image; the same clamp applies to every candidate.
+    let mut all: Vec<f64> = pixels.iter().flat_map(|p| p.values.iter().flatten().copied()).collect();
+    let clamp = if all.is_empty() {
         f64::INFINITY
     } else {
-        let k = ((values.len() as f64 * (1.0 - CLAMP_TAIL)) as usize).min(values.len() - 1);
-        *values.select_nth_unstable_by(k, f64::total_cmp).1
+        let k = ((all.len() as f64 * (1.0 - CLAMP_TAIL)) as usize).min(all.len() - 1);
+        *all.select_nth_unstable_by(k, f64::total_cmp).1
     };
-    let m = PILOT_BRANCHES as f64;
-    let mut stats = Vec::with_capacity(pixels.len());
-    for p in pixels.iter().filter(|p| p.len() >= 2) {
-        let n = p.len() as f64;
-        let (mut y, mut y2, mut d) = (0.0, 0.0, 0.0);
-        for q in p {
-            let x = q.x.map(|x| x.min(clamp));
-            let xm = x.iter().sum::<f64>() / m;
-            let yq = q.first.min(clamp) + xm;
-            y += yq;
-            y2 += yq * yq;
-            // the branches' sample variance: an unbiased estimate of V_w at this sample
-            d += x.iter().map(|x| (x - xm) * (x - xm)).sum::<f64>() / (m - 1.0);
-        }
-        let mu = y / n;
-        // (pixel mean, sample variance of Y, mean of the branches' variance)
-        stats.push((mu, ((y2 - n * mu * mu) / (n - 1.0)).max(0.0), d / n));
-    }
-    let mean_of_means = stats.iter().map(|s| s.0).sum::<f64>() / stats.len().max(1) as f64;
+    // per pixel: the replicates' means for each candidate
+    let means: Vec<[Vec<f64>; CANDIDATES.len()]> = pixels
+        .iter()
+        .map(|p| {
+            std::array::from_fn(|c| {
+                let per_sample = 1 + CANDIDATES[c] as usize;
+                let y = |v: &[f64]| v[0].min(clamp) + v[1..].iter().map(|x| x.min(clamp)).sum::<f64>() / CANDIDATES[c] as f64;
+                p.values[c].chunks_exact(per_sample * s).map(|rep| rep.chunks_exact(per_sample).map(y).sum::<f64>() / s as f64).collect()
+            })
+        })
+        .collect();
+    let pixel_mean = |m: &[Vec<f64>; CANDIDATES.len()]| m.iter().flatten().sum::<f64>() / (CANDIDATES.len() * r) as f64;
+    let mean_of_means = means.iter().map(pixel_mean).sum::<f64>() / means.len().max(1) as f64;
     let eps = 1e-2 * mean_of_means * mean_of_means + f64::MIN_POSITIVE;
-    let (mut var_first, mut var_branch) = (0.0, 0.0);
-    for &(mu, s2, vw) in &stats {
+    let mut variance = [0.0; CANDIDATES.len()];
+    for m in &means {
+        let mu = pixel_mean(m);
         let w = 1.0 / (mu * mu + eps);
-        var_branch += w * vw;
-        var_first += w * (s2 - vw / m);
+        for (c, reps) in m.iter().enumerate() {
+            let rm = reps.iter().sum::<f64>() / r as f64;
+            let s2 = reps.iter().map(|x| (x - rm) * (x - rm)).sum::<f64>() / (r as f64 - 1.0);
+            // a replicate averages S samples: S·s² is one sample's worth
+            variance[c] += w * s2 * s as f64;
+        }
     }
-    let branches = if var_branch <= 0.0 || cost_branch <= 0.0 {
-        1
-    } else if var_first <= 0.0 {
-        MAX_AUTO_BRANCHES
-    } else {
-        let n = (cost_first * var_branch / (cost_branch * var_first)).sqrt();
-        (n.round() as u32).clamp(1, MAX_AUTO_BRANCHES)
-    };
-    Pilot { samples, cost_first, cost_branch, var_first, var_branch, branches }
+    let cost: [f64; CANDIDATES.len()] = std::array::from_fn(|c| CAMERA_SAMPLE_COST + pixels.iter().map(|p| p.rays[c]).sum::<u64>() as f64 / samples_per_candidate);
+    let samples = samples_per_candidate as u64 * CANDIDATES.len() as u64;
+    Pilot { samples, spp, replicates, ..best_count(variance, cost) }
+}
+
+/// The model behind the choice, fitted to the candidates' measured V(N) and C(N):
+/// V(N) = V_b + V_w/N by least squares in relative terms (each V(N) is as uncertain, in
+/// proportion, as the others) and C(N) = C₁ + N·C₂; then the candidate with the least modelled
+/// V(N)·C(N), with V_b and V_w taken as at least 0 (ties go to fewer branches). The fit pools
+/// the five measurements, so that one candidate's noise does not decide alone.
+fn best_count(variance: [f64; CANDIDATES.len()], cost: [f64; CANDIDATES.len()]) -> Pilot {
+    let n: [f64; CANDIDATES.len()] = CANDIDATES.map(|n| n as f64);
+    let (cost_first, cost_branch) = fit_line(&n, &cost, &[1.0; CANDIDATES.len()]);
+    let vmax = variance.iter().fold(0.0f64, |m, &v| m.max(v));
+    let tiny = (1e-12 * vmax) * (1e-12 * vmax) + f64::MIN_POSITIVE;
+    let (var_first, var_branch) = fit_line(&n.map(|n| 1.0 / n), &variance, &variance.map(|v| 1.0 / (v * v + tiny)));
+    let (vb, vw) = (var_first.max(0.0), var_branch.max(0.0));
+    let model = |n: f64| (vb + vw / n) * (cost_first + n * cost_branch);
+    let mut best = 0;
+    for c in 1..CANDIDATES.len() {
+        if model(n[c]) < model(n[best]) {
+            best = c;
+        }
+    }
+    let branches = if vw > 0.0 { CANDIDATES[best] } else { 1 };
+    Pilot { samples: 0, spp: 0, replicates: 0, variance, cost, cost_first, cost_branch, var_first, var_branch, branches }
+}
+
+/// Least-squares (a, b) of y = a + b·x with weights w.
+fn fit_line(x: &[f64], y: &[f64], w: &[f64]) -> (f64, f64) {
+    let sw: f64 = w.iter().sum();
+    let mx = x.iter().zip(w).map(|(x, w)| w * x).sum::<f64>() / sw;
+    let my = y.iter().zip(w).map(|(y, w)| w * y).sum::<f64>() / sw;
+    let sxy: f64 = x.iter().zip(y).zip(w).map(|((x, y), w)| w * (x - mx) * (y - my)).sum();
+    let sxx: f64 = x.iter().zip(w).map(|(x, w)| w * (x - mx) * (x - mx)).sum();
+    let b = if sxx > 0.0 { sxy / sxx } else { 0.0 };
+    (my - b * mx, b)
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    /// A pixel's samples; the rays are spread evenly over them.
-    fn pixel(samples: &[(f64, [f64; PILOT_BRANCHES])], rays_first: u32, rays_branch: u32) -> Vec<PilotSample> {
-        let n = samples.len() as u32;
-        samples.iter().map(|&(first, x)| PilotSample { first, x, rays_first: rays_first / n, rays_branch: rays_branch / n }).collect()
+    /// A pixel whose camera sample `i` of replicate `rep` (of S) has the first-hit value
+    /// `first(rep, i)` and branch values `branch(n, rep, i, b)`; every sample traces 1 ray
+    /// before the split and 2 per branch.
+    fn pixel(r: u32, s: u32, first: impl Fn(u32, u32) -> f64, branch: impl Fn(u32, u32, u32, u32) -> f64) -> PilotPixel {
+        let mut p = PilotPixel::default();
+        for (c, &n) in CANDIDATES.iter().enumerate() {
+            for rep in 0..r {
+                for i in 0..s {
+                    p.values[c].push(first(rep, i));
+                    p.values[c].extend((0..n).map(|b| branch(n, rep, i, b)));
+                    p.rays[c] += 1 + 2 * n as u64;
+                }
+            }
+        }
+        p
     }
 
-    /// Branches that always agree (no noise after the first hit): one branch.
+    /// Branches that always agree (no noise after the first hit): one branch, and V_w = 0.
     #[test]
     fn noiseless_branches_are_not_split() {
-        let p = pixel(&[(0.0, [1.0; 4]), (0.5, [2.0; 4]), (0.0, [1.5; 4])], 3, 12);
-        assert_eq!(choose(&[p.clone(), p]).branches, 1);
+        let p = pixel(4, 2, |rep, i| (rep * 2 + i) as f64 * 0.25, |_, rep, _, _| 1.0 + rep as f64);
+        let c = choose(&[p.clone(), p], 4, 2);
+        assert_eq!(c.branches, 1, "{c:?}");
+        assert!(c.variance.iter().all(|&v| v == c.variance[0]) && c.var_branch.abs() <= 1e-12 * c.var_first, "{c:?}");
+        // C(N) = 1 + 1 + 2N: the camera sample's cost, the first ray, two rays per branch
+        assert!((c.cost_first - 2.0).abs() < 1e-12 && (c.cost_branch - 2.0).abs() < 1e-12, "{c:?}");
     }
 
-    /// The formula, on samples built so that every estimate is known exactly: two samples per
-    /// pixel, first-hit values 0 and 2a, branches (b, −b, b, −b). Then Y ∈ {0, 2a}, so
-    /// s²(Y) = 2a²; each sample's branch variance is V_w = 4b²/3; V_b = 2a² − V_w/4.
+    /// Replicate values built so that V(N) is known exactly (S = 1, R = 4): the first hit is
+    /// 0 or 2a, and branch 0 of N is 1 ± b, the others 1, so a sample's value is
+    /// first + 1 ± b/N. Over the replicates the deviations are ±a ± b/N in all four
+    /// combinations, so V(N) ∝ a² + b²/N², and C(N) = 2 + 2N.
     #[test]
-    fn optimal_factor_from_the_samples() {
-        let case = |a: f64, b: f64| pixel(&[(0.0, [b, -b, b, -b]), (2.0 * a, [b, -b, b, -b])], 4, 16);
-        // rays: 2 per sample before the split (+1 for the camera sample) and 16/2/4 = 2 per
-        // branch: C₁ = 3, C₂ = 2
-        let c = choose(&[case(3.0, 2.0)]);
-        assert!((c.cost_first - 3.0).abs() < 1e-12 && (c.cost_branch - 2.0).abs() < 1e-12, "{c:?}");
-        let (vw, vb) = (16.0 / 3.0, 18.0 - 4.0 / 3.0);
-        assert!((c.var_branch / c.var_first - vw / vb).abs() < 1e-12, "{c:?}");
-        // N* = √(3·5.33/(2·16.7)) = 0.69
-        assert_eq!(c.branches, 1);
-        // a = 1, b = 2.09: V_w = 5.824, V_b = 0.544, N* = √(3·5.824/(2·0.544)) = 4.01
-        assert_eq!(choose(&[case(1.0, 2.09)]).branches, 4);
-        // b large enough that V_b < 0: the estimate says the first hit decides nothing
-        assert_eq!(choose(&[case(1.0, 3.0)]).branches, MAX_AUTO_BRANCHES);
+    fn replicate_variances_and_costs() {
+        let (a, b) = (1.0, 8.0);
+        let p = pixel(4, 1, |rep, _| if rep % 2 == 0 { 0.0 } else { 2.0 * a }, |_, rep, _, k| 1.0 + if k == 0 { if rep < 2 { b } else { -b } } else { 0.0 });
+        let c = choose(&[p], 4, 1);
+        for ((v, n), cost) in c.variance.iter().zip(CANDIDATES).zip(c.cost) {
+            let expected = c.variance[0] * (a * a + b * b / (n * n) as f64) / (a * a + b * b);
+            assert!((v / expected - 1.0).abs() < 1e-12 && cost == 2.0 + 2.0 * n as f64, "{c:?}");
+        }
+        assert_eq!((c.samples, c.spp, c.replicates), (4 * CANDIDATES.len() as u64, 1, 4));
+    }
+
+    /// The model's optimum N* = √(C₁·V_w/(C₂·V_b)), among the candidates.
+    #[test]
+    fn the_count_follows_the_model() {
+        let pick = |vb: f64, vw: f64, c1: f64, c2: f64| {
+            let p = best_count(CANDIDATES.map(|n| vb + vw / n as f64), CANDIDATES.map(|n| c1 + c2 * n as f64));
+            assert!((p.var_first - vb).abs() <= 1e-9 * (vb + vw) && (p.var_branch - vw).abs() <= 1e-9 * (vb + vw), "{p:?}");
+            p.branches
+        };
+        // N* = √(2·16/(2·1)) = 4
+        assert_eq!(pick(1.0, 16.0, 2.0, 2.0), 4);
+        // N* = √(8·100/(1·1)) = 28: the largest candidate
+        assert_eq!(pick(1.0, 100.0, 8.0, 1.0), 16);
+        // N* = 0.5
+        assert_eq!(pick(1.0, 1.0, 1.0, 4.0), 1);
+        // nothing decided at the first hit: as many as allowed; nothing after it: one
+        assert_eq!(pick(0.0, 5.0, 2.0, 2.0), 16);
+        assert_eq!(pick(5.0, 0.0, 2.0, 2.0), 1);
+        // N* = √(2·18/(2·2)) = 3: 2 and 4 model 11·6 = 66 and 6.5·10 = 65
+        assert_eq!(pick(2.0, 18.0, 2.0, 2.0), 4);
+        // one candidate's noise does not decide: V(4) measured 30 % low
+        let mut v = CANDIDATES.map(|n| 1.0 + 1.0 / n as f64);
+        v[2] *= 0.7;
+        assert_eq!(best_count(v, CANDIDATES.map(|n| 2.0 + 2.0 * n as f64)).branches, 1);
     }
 }

@@ -6,7 +6,7 @@
 //! | `rr_depth`      | integer | 5       | depth from which Russian roulette may end paths |
 //! | `hide_emitters` | boolean | false   | emitters seen directly by camera rays contribute nothing |
 //! | `light_selection` | string | `uniform` | steradian's own: `uniform` or `power` (see `light_selection.rs`) |
-//! | `branches`      | integer | chosen  | steradian's own: paths continued from each camera ray's first hit (1 to 64; 1 = Mitsuba's estimator); unset, a pilot chooses 1 to 16 (`branching.rs`) |
+//! | `branches`      | integer | chosen  | steradian's own: paths continued from each camera ray's first hit (1 to 64; 1 = Mitsuba's estimator); unset, a pilot chooses 1, 2, 4, 8 or 16 (`branching.rs`) |
 //!
 //! At every vertex with a non-delta BSDF one light is chosen uniformly and sampled (next-event
 //! estimation), and the BSDF is sampled to continue the path; both estimators of emitted light

@@ -174,7 +174,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
     let mut pilot = None;
     let integrator = match &scene.integrator {
         Integrator::Path(p) if p.branches == Branches::Auto => {
-            pilot = pool.install(|| branching::pilot(p, scene, sensor, width, height, spp, sampler.seed));
+            pilot = pool.install(|| branching::pilot(p, scene, sensor, width, height, spp, &sampler));
             let n = pilot.map_or(DEFAULT_BRANCHES, |p| p.branches);
             Integrator::Path(PathTracer { branches: Branches::Fixed(n), ..p.clone() })
         }

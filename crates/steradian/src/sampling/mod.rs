@@ -9,5 +9,6 @@ pub mod spherical_rectangle;
 pub mod spherical_triangle;
 pub mod warp;
 
+pub(crate) use pcg32::mix64;
 pub use pcg32::Pcg32;
 pub use sampler::{PixelSampler, Sampler, SamplerKind};

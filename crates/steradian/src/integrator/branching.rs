@@ -139,7 +139,7 @@ pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, he
     let replicates = PILOT_REPLICATES.max(PILOT_UNITS.div_ceil(pixels));
     let paths_per_sample: u64 = CANDIDATES.iter().map(|&n| 1 + n as u64).sum();
     let budget = width as u64 * height as u64 * spp as u64 * 2 / PILOT_BUDGET_FRACTION;
-    let mut s = spp.min(PILOT_MAX_SPP).max(1);
+    let mut s = spp.clamp(1, PILOT_MAX_SPP);
     s = 1 << s.ilog2();
     while s > 1 && pixels as u64 * replicates as u64 * s as u64 * paths_per_sample > budget {
         s /= 2;

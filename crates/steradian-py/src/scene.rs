@@ -262,6 +262,13 @@ impl Measurement {
         self.inner.dropped_samples
     }
 
+    /// Paths continued from each sample's first hit by the `path` integrator (its `branches`,
+    /// chosen by a short pilot when the scene leaves it unset); `None` for other integrators.
+    #[getter]
+    fn branches(&self) -> Option<u32> {
+        self.inner.branches
+    }
+
     fn __repr__(&self) -> String {
         let (v, e) = (self.inner.value, self.inner.stderr);
         format!(

@@ -27,6 +27,9 @@ pub struct Measurement {
     /// NaN/Inf samples dropped.
     pub dropped_samples: u64,
     pub interrupted: bool,
+    /// Paths continued from each sample's first hit (`path`'s branches, chosen by its pilot
+    /// when the scene leaves them unset); `None` for other integrators.
+    pub branches: Option<u32>,
 }
 
 /// Reads sensor `opts.sensor` (the first when `None`): renders it with `opts` and reduces the
@@ -59,6 +62,7 @@ impl Measurement {
             spp_requested: out.spp_requested,
             dropped_samples: out.dropped_samples,
             interrupted: out.interrupted,
+            branches: out.branches,
         }
     }
 
@@ -90,7 +94,7 @@ mod tests {
             block.put(Vec2::new(1.5, 0.5), crate::Spectrum::splat(5.0));
         }
         film.merge(&block);
-        let out = RenderOutput { film, branches: None, pilot: None, spp: 2, spp_requested: 2, dropped_samples: 0, elapsed: Duration::ZERO, interrupted: false };
+        let out = RenderOutput { film, branches: Some(3), pilot: None, spp: 2, spp_requested: 2, dropped_samples: 0, elapsed: Duration::ZERO, interrupted: false };
         let m = Measurement::from_render(&out, 0, Quantity::Radiance);
         let se = out.film.develop_stderr();
         for c in 0..3 {
@@ -100,5 +104,6 @@ mod tests {
             assert!(m.stderr[c] > 0.0);
         }
         assert_eq!(m.unit(), "W/(m²·sr)");
+        assert_eq!(m.branches, Some(3));
     }
 }

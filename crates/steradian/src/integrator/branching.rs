@@ -35,7 +35,7 @@
 //!
 //! S is the largest power of two up to min(spp, 16) for which the pilot's work (Σ(1 + N) = 36
 //! paths per pixel, replicate and sample) stays within 1/4 of a one-branch render's (at most
-//! 1.2 % of a 256 × 256, 64-spp render with 16 branches); a render too small for S = 1 gets
+//! 1.7 % of a 256 × 256, 64-spp render with 16 branches); a render too small for S = 1 gets
 //! [`DEFAULT_BRANCHES`](super::DEFAULT_BRANCHES).
 //!
 //! Choices on the reference scenes at 64 spp, seeds 0–3: cornell, materials, veach, plastics

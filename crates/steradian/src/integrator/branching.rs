@@ -51,10 +51,11 @@
 //! `max_depth` = 2, whose light after the first hit has no noise at all, gets 1, where
 //! 4 branches would take 2.2× the time for the same image.
 
-use glam::{UVec2, Vec2};
+use glam::UVec2;
 use rayon::prelude::*;
 
 use super::path::{Branches, RayCount};
+use super::render::film_position;
 use super::PathTracer;
 use crate::sampling::{mix64, Sampler};
 use crate::scene::Scene;
@@ -137,16 +138,19 @@ pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, he
     let film_pixels = width as u64 * height as u64;
     let pixels = (PILOT_PIXELS as u64).min(film_pixels) as u32;
     let replicates = PILOT_REPLICATES.max(PILOT_UNITS.div_ceil(pixels));
+    // work in paths (camera samples and branches): the pilot's with S samples per replicate,
+    // at most 1/PILOT_BUDGET_FRACTION of a one-branch render's
     let paths_per_sample: u64 = CANDIDATES.iter().map(|&n| 1 + n as u64).sum();
-    let budget = width as u64 * height as u64 * spp as u64 * 2 / PILOT_BUDGET_FRACTION;
-    let mut s = spp.clamp(1, PILOT_MAX_SPP);
-    s = 1 << s.ilog2();
-    while s > 1 && pixels as u64 * replicates as u64 * s as u64 * paths_per_sample > budget {
+    let work = |s: u32| pixels as u64 * replicates as u64 * s as u64 * paths_per_sample;
+    let budget = film_pixels * spp as u64 * 2 / PILOT_BUDGET_FRACTION;
+    let mut s = 1 << spp.clamp(1, PILOT_MAX_SPP).ilog2();
+    while s > 1 && work(s) > budget {
         s /= 2;
     }
-    if pixels as u64 * replicates as u64 * s as u64 * paths_per_sample > budget {
+    if work(s) > budget {
         return None;
     }
+    let probes = CANDIDATES.map(|n| PathTracer { branches: Branches::Fixed(n), ..tracer.clone() });
     let samplers: Vec<Sampler> =
         (0..replicates).map(|r| Sampler { kind: sampler.kind, sample_count: s, seed: mix64(sampler.seed ^ PILOT_SALT).wrapping_add(r as u64) }).collect();
     let measured: Vec<PilotPixel> = (0..pixels)
@@ -156,14 +160,13 @@ pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, he
             let k = if pixels as u64 == film_pixels { i as u64 } else { mix64(sampler.seed ^ PILOT_SALT ^ mix64(i as u64)) % film_pixels };
             let pixel = UVec2::new((k % width as u64) as u32, (k / width as u64) as u32);
             let mut out = PilotPixel::default();
-            for (c, &n) in CANDIDATES.iter().enumerate() {
-                let probe = PathTracer { branches: Branches::Fixed(n), ..tracer.clone() };
+            for (c, (&n, probe)) in CANDIDATES.iter().zip(&probes).enumerate() {
                 let values = &mut out.values[c];
                 values.reserve((replicates * s * (1 + n)) as usize);
                 for sampler in &samplers {
                     for index in 0..s {
                         let mut ps = sampler.pixel_sampler(pixel, width, index);
-                        let film_uv = (pixel.as_vec2() + ps.next_2d()) / Vec2::new(width as f32, height as f32);
+                        let (_, film_uv) = film_position(pixel, &mut ps, width, height);
                         let start = values.len();
                         values.resize(start + 1 + n as usize, 0.0);
                         let Some(ray) = sensor.start_ray(film_uv, &mut ps) else { continue };
@@ -177,7 +180,8 @@ pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, he
                                 out.rays[c] += rays.0 as u64;
                             });
                         }
-                        // a NaN or infinite sample never reaches the film: it counts as black
+                        // the render drops a sample that is not finite; here such a value counts
+                        // as 0, so that it cannot poison the variances (it shapes only the choice)
                         for v in &mut values[start..] {
                             if !v.is_finite() {
                                 *v = 0.0;
@@ -217,12 +221,12 @@ fn choose(pixels: &[PilotPixel], replicates: u32, spp: u32) -> Pilot {
             })
         })
         .collect();
-    let pixel_mean = |m: &[Vec<f64>; CANDIDATES.len()]| m.iter().flatten().sum::<f64>() / (CANDIDATES.len() * r) as f64;
-    let mean_of_means = means.iter().map(pixel_mean).sum::<f64>() / means.len().max(1) as f64;
+    // each pixel's mean over all its replicates of all candidates
+    let mus: Vec<f64> = means.iter().map(|m| m.iter().flatten().sum::<f64>() / (CANDIDATES.len() * r) as f64).collect();
+    let mean_of_means = mus.iter().sum::<f64>() / mus.len().max(1) as f64;
     let eps = 1e-2 * mean_of_means * mean_of_means + f64::MIN_POSITIVE;
     let mut variance = [0.0; CANDIDATES.len()];
-    for m in &means {
-        let mu = pixel_mean(m);
+    for (m, &mu) in means.iter().zip(&mus) {
         let w = 1.0 / (mu * mu + eps);
         for (c, reps) in m.iter().enumerate() {
             let rm = reps.iter().sum::<f64>() / r as f64;
@@ -232,8 +236,20 @@ fn choose(pixels: &[PilotPixel], replicates: u32, spp: u32) -> Pilot {
         }
     }
     let cost: [f64; CANDIDATES.len()] = std::array::from_fn(|c| CAMERA_SAMPLE_COST + pixels.iter().map(|p| p.rays[c]).sum::<u64>() as f64 / samples_per_candidate);
+    let Fit { cost_first, cost_branch, var_first, var_branch, branches } = best_count(variance, cost);
     let samples = samples_per_candidate as u64 * CANDIDATES.len() as u64;
-    Pilot { samples, spp, replicates, ..best_count(variance, cost) }
+    Pilot { samples, spp, replicates, variance, cost, cost_first, cost_branch, var_first, var_branch, branches }
+}
+
+/// The model fitted to the candidates' measurements (see [`Pilot`] for the fields), and the
+/// count it chooses.
+#[derive(Clone, Copy, Debug)]
+struct Fit {
+    cost_first: f64,
+    cost_branch: f64,
+    var_first: f64,
+    var_branch: f64,
+    branches: u32,
 }
 
 /// The model behind the choice, fitted to the candidates' measured V(N) and C(N):
@@ -241,7 +257,7 @@ fn choose(pixels: &[PilotPixel], replicates: u32, spp: u32) -> Pilot {
 /// proportion, as the others) and C(N) = C₁ + N·C₂; then the candidate with the least modelled
 /// V(N)·C(N), with V_b and V_w taken as at least 0 (ties go to fewer branches). The fit pools
 /// the five measurements, so that one candidate's noise does not decide alone.
-fn best_count(variance: [f64; CANDIDATES.len()], cost: [f64; CANDIDATES.len()]) -> Pilot {
+fn best_count(variance: [f64; CANDIDATES.len()], cost: [f64; CANDIDATES.len()]) -> Fit {
     let n: [f64; CANDIDATES.len()] = CANDIDATES.map(|n| n as f64);
     let (cost_first, cost_branch) = fit_line(&n, &cost, &[1.0; CANDIDATES.len()]);
     let vmax = variance.iter().fold(0.0f64, |m, &v| m.max(v));
@@ -256,7 +272,7 @@ fn best_count(variance: [f64; CANDIDATES.len()], cost: [f64; CANDIDATES.len()]) 
         }
     }
     let branches = if vw > 0.0 { CANDIDATES[best] } else { 1 };
-    Pilot { samples: 0, spp: 0, replicates: 0, variance, cost, cost_first, cost_branch, var_first, var_branch, branches }
+    Fit { cost_first, cost_branch, var_first, var_branch, branches }
 }
 
 /// Least-squares (a, b) of y = a + b·x with weights w.

@@ -219,8 +219,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
                             let pixel = UVec2::new(x, y);
                             for index in s0..s1 {
                                 let mut s = sampler.pixel_sampler(pixel, width, index);
-                                let mut pos = pixel.as_vec2() + s.next_2d();
-                                let film_uv = pos / Vec2::new(width as f32, height as f32);
+                                let (mut pos, film_uv) = film_position(pixel, &mut s, width, height);
                                 let l = match opts.quantity {
                                     PixelQuantity::Sensor => sensor.measure(scene, &integrator, film_uv, &mut s),
                                     PixelQuantity::SurfaceIrradiance => surface_irradiance(scene, sensor, film_uv, &mut s),
@@ -276,6 +275,15 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
         elapsed: start.elapsed(),
         interrupted,
     })
+}
+
+/// Where on the film a camera sample lands: its pixel plus the sampler's first 2-D draw, in
+/// pixels (where the film splats it), and the same as a fraction of the film (`film_uv`, what
+/// sensors take). The pilot (`branching.rs`) starts its samples here too.
+#[inline]
+pub(super) fn film_position(pixel: UVec2, s: &mut PixelSampler, width: u32, height: u32) -> (Vec2, Vec2) {
+    let pos = pixel.as_vec2() + s.next_2d();
+    (pos, pos / Vec2::new(width as f32, height as f32))
 }
 
 /// Irradiance on the surface seen through film position `film_uv`, on the camera's side.

@@ -231,11 +231,11 @@ impl Properties {
     }
 
     /// A colour as linear RGB: `<rgb>`, `<spectrum>`, or a `<float>` (uniform spectrum).
-    pub fn get_spectrum(&self, name: &str) -> Result<Option<Vec3>, LoadError> {
+    pub fn get_spectrum(&self, name: &str) -> Result<Option<steradian::Spectrum>, LoadError> {
         self.typed(name, "rgb, spectrum or float", |v| match v {
-            PropertyValue::Rgb(c) => Some(*c),
-            PropertyValue::Spectrum(s) => Some(s.rgb()),
-            PropertyValue::Float(f) => Some(Vec3::splat(*f as f32)),
+            PropertyValue::Rgb(c) => Some((*c).into()),
+            PropertyValue::Spectrum(s) => Some(s.rgb().into()),
+            PropertyValue::Float(f) => Some(steradian::Spectrum::splat(*f as f32)),
             _ => None,
         })
     }
@@ -286,9 +286,9 @@ mod tests {
         p.insert("b", PropertyValue::Float(0.25), pos(2)).unwrap();
         p.insert("c", PropertyValue::Spectrum(SpectrumValue::Uniform(0.5)), pos(3)).unwrap();
         p.insert("d", PropertyValue::Int(1), pos(4)).unwrap();
-        assert_eq!(p.get_spectrum("a").unwrap(), Some(Vec3::new(1.0, 2.0, 3.0)));
-        assert_eq!(p.get_spectrum("b").unwrap(), Some(Vec3::splat(0.25)));
-        assert_eq!(p.get_spectrum("c").unwrap(), Some(Vec3::splat(0.5)));
+        assert_eq!(p.get_spectrum("a").unwrap().map(Vec3::from), Some(Vec3::new(1.0, 2.0, 3.0)));
+        assert_eq!(p.get_spectrum("b").unwrap().map(Vec3::from), Some(Vec3::splat(0.25)));
+        assert_eq!(p.get_spectrum("c").unwrap().map(Vec3::from), Some(Vec3::splat(0.5)));
         assert!(p.get_spectrum("d").is_err());
     }
 }

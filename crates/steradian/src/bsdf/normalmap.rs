@@ -32,7 +32,7 @@ impl NormalMap {
 
     /// The mapped normal 2c − 1 in the local shading frame (unnormalised).
     pub fn normal(&self, sp: &ShadingPoint) -> Vec3 {
-        self.normals.eval(sp.uv) * 2.0 - Vec3::ONE
+        Vec3::from(self.normals.eval(sp.uv)) * 2.0 - Vec3::ONE
     }
 
     #[inline]
@@ -68,7 +68,7 @@ mod tests {
     use super::*;
 
     fn nmap(c: Vec3, nested: Bsdf) -> Bsdf {
-        Bsdf::NormalMap(NormalMap::new(c.into(), nested, PerturbOptions::default()))
+        Bsdf::NormalMap(NormalMap::new(crate::Spectrum::from(c).into(), nested, PerturbOptions::default()))
     }
 
     fn white() -> Bsdf {

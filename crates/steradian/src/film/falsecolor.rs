@@ -184,7 +184,7 @@ mod tests {
             last = l;
         }
         let mut img = Image::new(4, 2);
-        img.set(3, 1, glam::Vec3::splat(2.0));
+        img.set(3, 1, crate::Spectrum::splat(2.0));
         let (w, h, rgb) = false_color(&img, "irradiance", "W/m²");
         assert_eq!(rgb.len(), (w * h * 3) as usize);
         assert!(w > 4 && h >= 120);

@@ -16,8 +16,9 @@ pub enum SamplerKind {
     /// Every 2-D draw starts a block of its own and gets dimensions (0, 1), a (0, 2)-sequence;
     /// 1-D draws take the block's dimensions 2 and 3, each a (0, 1)-sequence.
     /// Every point is uniformly distributed, so every estimator stays unbiased; the points
-    /// are stratified in each block, so error falls faster than with i.i.d. numbers. Beyond
-    /// 2¹⁶ samples per pixel the remaining samples are i.i.d.
+    /// are stratified in each block, so error falls faster than with i.i.d. numbers. The
+    /// sequence has 2¹⁶ points; samples (and branches) beyond them come in further runs of
+    /// 2¹⁶, each an independently scrambled Sobol set (an *epoch*), so they stay stratified.
     Sobol,
     /// i.i.d. uniform numbers (PCG32): what the per-sample standard error assumes. Meters use
     /// it so that their error bars are honest.
@@ -41,8 +42,8 @@ impl Default for Sampler {
     }
 }
 
-/// The Sobol sequence's length limit (sobol_burley indexes 16 bits).
-const SOBOL_MAX_INDEX: u32 = 1 << 16;
+/// Points per epoch: the Sobol sequence's length (sobol_burley indexes 16 bits).
+const SOBOL_EPOCH: u64 = 1 << 16;
 
 impl Sampler {
     /// The stream of numbers for sample `index` of `pixel` (an image of `width` pixels per row).
@@ -51,12 +52,22 @@ impl Sampler {
         let pixel_id = pixel.y as u64 * width as u64 + pixel.x as u64;
         let stream = mix64(pixel_id ^ mix64(self.seed.wrapping_add(0x9e37_79b9_7f4a_7c15)));
         let rng = Pcg32::new(mix64((index as u64) ^ (stream << 1)), stream);
-        let kind = if index < SOBOL_MAX_INDEX { self.kind } else { SamplerKind::Independent };
-        let mut s = PixelSampler { rng, kind, index, pixel_seed: stream as u32 ^ (stream >> 32) as u32, block: 0, buf: [0.0; 4], pos: 4 };
-        if kind == SamplerKind::Sobol {
+        let pixel_seed = stream as u32 ^ (stream >> 32) as u32;
+        let mut s = PixelSampler { rng, kind: self.kind, global: index as u64, pixel_seed, epoch_seed: epoch_seed(pixel_seed, index as u64), block: 0, buf: [0.0; 4], pos: 4 };
+        if s.kind == SamplerKind::Sobol {
             s.refill();
         }
         s
+    }
+}
+
+/// The scramble seed of the epoch of sample `global` of the pixel whose seed is `pixel_seed`:
+/// epoch 0 keeps the pixel's own seed, later epochs mix in their number.
+#[inline]
+fn epoch_seed(pixel_seed: u32, global: u64) -> u32 {
+    match global / SOBOL_EPOCH {
+        0 => pixel_seed,
+        epoch => pixel_seed ^ mix64(epoch ^ 0x5eed_e90c_4a11_0b5d) as u32,
     }
 }
 
@@ -65,10 +76,12 @@ impl Sampler {
 pub struct PixelSampler {
     rng: Pcg32,
     kind: SamplerKind,
-    /// Sample index within the pixel.
-    index: u32,
+    /// Sample index within the pixel, counted over all epochs (see [`SamplerKind::Sobol`]).
+    global: u64,
     /// Per-pixel scramble seed.
     pixel_seed: u32,
+    /// Scramble seed of the pixel's epoch that holds this sample.
+    epoch_seed: u32,
     /// Index of the current 4-D block of dimensions.
     block: u32,
     buf: [f32; 4],
@@ -79,33 +92,33 @@ pub struct PixelSampler {
 impl PixelSampler {
     /// A stand-alone stream (tests, meters): i.i.d. numbers from `seed` and `stream`.
     pub fn independent(seed: u64, stream: u64) -> Self {
-        PixelSampler { rng: Pcg32::new(mix64(seed), stream), kind: SamplerKind::Independent, index: 0, pixel_seed: 0, block: 0, buf: [0.0; 4], pos: 4 }
+        PixelSampler { rng: Pcg32::new(mix64(seed), stream), kind: SamplerKind::Independent, global: 0, pixel_seed: 0, epoch_seed: 0, block: 0, buf: [0.0; 4], pos: 4 }
     }
 
     /// Loads the next 4-D block: set 0 of the Sobol sequence (its best-distributed
     /// dimensions) with a seed of its own, so blocks are mutually independent ("padding").
     #[inline]
     fn refill(&mut self) {
-        let seed = self.pixel_seed ^ (self.block.wrapping_mul(0x9e37_79b9)).rotate_left(16);
-        self.buf = super::sobol4::sample_4d(self.index, seed);
+        let seed = self.epoch_seed ^ (self.block.wrapping_mul(0x9e37_79b9)).rotate_left(16);
+        self.buf = super::sobol4::sample_4d((self.global % SOBOL_EPOCH) as u32, seed);
         self.block += 1;
         self.pos = 0;
     }
 
     /// Branch `b` of `n`, when one sample continues into `n` independent paths (splitting at
     /// the first hit, `integrator/path.rs`). From the next 4-D block on, a branch's numbers are
-    /// those of sample `index·n + b` of the pixel's Sobol sequence, so the n·spp branches of a
-    /// pixel form one stratified set (past 2¹⁶ of them, and for i.i.d. sampling, the branch
-    /// draws i.i.d. numbers from a stream seeded by this one).
+    /// those of sample `index·n + b` of the pixel's Sobol sequence (over all epochs), so the
+    /// n·spp branches of a pixel form one stratified set; with i.i.d. sampling, the branch
+    /// draws i.i.d. numbers from a stream seeded by this one.
     pub fn branch(&mut self, b: u32, n: u32) -> PixelSampler {
         let seed = (self.rng.next_u32() as u64) << 32 | self.rng.next_u32() as u64;
-        let index = self.index as u64 * n as u64 + b as u64;
-        let kind = if index < SOBOL_MAX_INDEX as u64 { self.kind } else { SamplerKind::Independent };
+        let global = self.global * n as u64 + b as u64;
         PixelSampler {
             rng: Pcg32::new(mix64(seed), b as u64),
-            kind,
-            index: index.min(u32::MAX as u64) as u32,
+            kind: self.kind,
+            global,
             pixel_seed: self.pixel_seed,
+            epoch_seed: epoch_seed(self.pixel_seed, global),
             block: self.block,
             buf: [0.0; 4],
             pos: 4,
@@ -244,11 +257,37 @@ mod tests {
         assert_ne!(a, b);
     }
 
-    /// Beyond 2¹⁶ samples the sampler falls back to i.i.d. numbers instead of repeating.
+    /// Is every cell of the 16 × 16 grid hit exactly once by these 256 points?
+    fn one_per_cell(pts: &[Vec2]) -> bool {
+        let mut cells = [0u32; 256];
+        for u in pts {
+            cells[(u.y * 16.0) as usize * 16 + (u.x * 16.0) as usize] += 1;
+        }
+        cells.iter().all(|&c| c == 1)
+    }
+
+    /// Beyond the sequence's 2¹⁶ points, samples come from further epochs of 2¹⁶, each its
+    /// own scrambled Sobol set: stratified again, and not a repeat of the first epoch.
+    /// Regression: past 2¹⁶ the sampler had fallen back to i.i.d. numbers (so a 16-branch
+    /// render lost its stratified branches beyond 4096 spp).
     #[test]
-    fn long_runs_fall_back_to_independent_numbers() {
-        let sampler = Sampler { kind: SamplerKind::Sobol, sample_count: 1 << 17, seed: 1 };
-        let s = sampler.pixel_sampler(UVec2::ZERO, 1, SOBOL_MAX_INDEX + 5);
-        assert_eq!(s.kind, SamplerKind::Independent);
+    fn samples_beyond_the_sequence_come_from_further_scrambled_epochs() {
+        let sampler = Sampler { kind: SamplerKind::Sobol, sample_count: 1 << 18, seed: 1 };
+        let pixel = UVec2::new(2, 3);
+        for epoch in [1u32, 3] {
+            let first: Vec<Vec2> = (0..256).map(|i| sampler.pixel_sampler(pixel, 8, (epoch << 16) + i).next_2d()).collect();
+            assert!(one_per_cell(&first), "epoch {epoch} is not stratified");
+            let epoch0: Vec<Vec2> = (0..256).map(|i| sampler.pixel_sampler(pixel, 8, i).next_2d()).collect();
+            assert_ne!(first, epoch0, "epoch {epoch} repeats epoch 0");
+        }
+        // 16 branches of camera samples 4096..4111: branch indices 65536..65791, epoch 1
+        let branches: Vec<Vec2> = (4096..4112)
+            .flat_map(|i| {
+                let mut parent = sampler.pixel_sampler(pixel, 8, i);
+                parent.next_2d();
+                (0..16).map(move |b| parent.branch(b, 16).next_2d()).collect::<Vec<_>>()
+            })
+            .collect();
+        assert!(one_per_cell(&branches), "branches past 2¹⁶ are not stratified");
     }
 }

@@ -6,6 +6,7 @@
 use glam::{UVec2, Vec2};
 
 use super::pcg32::{mix64, Pcg32};
+use super::sobol4::SobolPoint;
 
 /// How the uniform numbers of a pixel sample are drawn.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -53,7 +54,7 @@ impl Sampler {
         let stream = mix64(pixel_id ^ mix64(self.seed.wrapping_add(0x9e37_79b9_7f4a_7c15)));
         let rng = Pcg32::new(mix64((index as u64) ^ (stream << 1)), stream);
         let pixel_seed = stream as u32 ^ (stream >> 32) as u32;
-        let mut s = PixelSampler { rng, kind: self.kind, global: index as u64, pixel_seed, epoch_seed: epoch_seed(pixel_seed, index as u64), block: 0, buf: [0.0; 4], pos: 4 };
+        let mut s = PixelSampler { rng, kind: self.kind, global: index as u64, pixel_seed, epoch_seed: epoch_seed(pixel_seed, index as u64), block: 0, point: SobolPoint::EMPTY, buf: [0.0; 2], pos: 4 };
         if s.kind == SamplerKind::Sobol {
             s.refill();
         }
@@ -84,23 +85,29 @@ pub struct PixelSampler {
     epoch_seed: u32,
     /// Index of the current 4-D block of dimensions.
     block: u32,
-    buf: [f32; 4],
-    /// Next unused component of `buf`.
+    /// The current block's point, and the pair of its dimensions computed last: (0, 1) while
+    /// `pos` ≤ 2, then (2, 3).
+    point: SobolPoint,
+    buf: [f32; 2],
+    /// Next unused dimension of the block (4: none left).
     pos: usize,
 }
 
 impl PixelSampler {
     /// A stand-alone stream (tests, meters): i.i.d. numbers from `seed` and `stream`.
     pub fn independent(seed: u64, stream: u64) -> Self {
-        PixelSampler { rng: Pcg32::new(mix64(seed), stream), kind: SamplerKind::Independent, global: 0, pixel_seed: 0, epoch_seed: 0, block: 0, buf: [0.0; 4], pos: 4 }
+        PixelSampler { rng: Pcg32::new(mix64(seed), stream), kind: SamplerKind::Independent, global: 0, pixel_seed: 0, epoch_seed: 0, block: 0, point: SobolPoint::EMPTY, buf: [0.0; 2], pos: 4 }
     }
 
-    /// Loads the next 4-D block: set 0 of the Sobol sequence (its best-distributed
+    /// Starts the next 4-D block: set 0 of the Sobol sequence (its best-distributed
     /// dimensions) with a seed of its own, so blocks are mutually independent ("padding").
+    /// Dimensions 0 and 1 are computed now, 2 and 3 when a 1-D draw first needs them.
     #[inline]
     fn refill(&mut self) {
         let seed = self.epoch_seed ^ (self.block.wrapping_mul(0x9e37_79b9)).rotate_left(16);
-        self.buf = super::sobol4::sample_4d((self.global % SOBOL_EPOCH) as u32, seed);
+        self.point = SobolPoint::new((self.global % SOBOL_EPOCH) as u32, seed);
+        let [a, b] = self.point.dims(0);
+        self.buf = [a, b];
         self.block += 1;
         self.pos = 0;
     }
@@ -120,7 +127,8 @@ impl PixelSampler {
             pixel_seed: self.pixel_seed,
             epoch_seed: epoch_seed(self.pixel_seed, global),
             block: self.block,
-            buf: [0.0; 4],
+            point: SobolPoint::EMPTY,
+            buf: [0.0; 2],
             pos: 4,
         }
     }
@@ -133,8 +141,11 @@ impl PixelSampler {
                 if self.pos >= 4 {
                     self.refill();
                 }
+                if self.pos == 2 {
+                    self.buf = self.point.dims(1);
+                }
                 self.pos += 1;
-                self.buf[self.pos - 1]
+                self.buf[(self.pos - 1) & 1]
             }
         }
     }

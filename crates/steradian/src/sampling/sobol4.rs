@@ -39,18 +39,49 @@ fn tables() -> &'static Tables {
 /// Per-dimension constants of the crate's scramble seeds.
 const DIM_SALT: [u32; 4] = [0x912f_69ba, 0x174f_18ab, 0x691e_72ca, 0xb40c_c1b8];
 
-/// Dimensions 0–3 of sample `index` (< 2¹⁶) of the Owen-scrambled Sobol sequence `seed`.
-#[inline]
-pub fn sample_4d(index: u32, seed: u32) -> [f32; 4] {
-    debug_assert!(index < 1 << 16);
-    let t = tables();
-    let rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
-    let hi = &t[0][(rev >> 24) as usize];
-    let lo = &t[1][((rev >> 16) & 0xff) as usize];
-    let seed = seed.wrapping_mul(0x9c8f_2d3b);
-    let scrambled: [u32; 4] = std::array::from_fn(|d| owen_scramble_rev(hi[d] ^ lo[d], hash(seed ^ DIM_SALT[d])));
-    // un-reversing four lanes at once is cheap in SSE2 (no multiplies)
-    Int4::from(scrambled).reverse_bits().to_f32_norm()
+/// One 4-D point of the sequence before its dimensions are scrambled: the shuffled index's
+/// Sobol product per dimension (bit-reversed) and the seed the dimensions' scrambles derive
+/// from. Each pair of dimensions is finished on demand ([`SobolPoint::dims`]): a 2-D draw
+/// that starts a block needs only dimensions 0 and 1, and half the scrambling work.
+#[derive(Clone, Copy, Debug)]
+pub struct SobolPoint {
+    sobol_rev: [u32; 4],
+    seed: u32,
+}
+
+impl SobolPoint {
+    /// A placeholder before the first block.
+    pub const EMPTY: SobolPoint = SobolPoint { sobol_rev: [0; 4], seed: 0 };
+
+    /// Sample `index` (< 2¹⁶) of the Owen-scrambled Sobol sequence `seed`.
+    #[inline]
+    pub fn new(index: u32, seed: u32) -> SobolPoint {
+        debug_assert!(index < 1 << 16);
+        let t = tables();
+        let rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
+        let hi = &t[0][(rev >> 24) as usize];
+        let lo = &t[1][((rev >> 16) & 0xff) as usize];
+        SobolPoint { sobol_rev: std::array::from_fn(|d| hi[d] ^ lo[d]), seed: seed.wrapping_mul(0x9c8f_2d3b) }
+    }
+
+    /// Dimensions `2·pair` and `2·pair + 1` (`pair` is 0 or 1), in [0, 1).
+    #[inline]
+    pub fn dims(&self, pair: usize) -> [f32; 2] {
+        let (a, b) = (2 * pair, 2 * pair + 1);
+        let scramble = |d: usize| owen_scramble_rev(self.sobol_rev[d], hash(self.seed ^ DIM_SALT[d]));
+        // un-reversing lanes is cheap in SSE2 (no multiplies); two lanes are left idle
+        let v = Int4::from([scramble(a), scramble(b), 0, 0]).reverse_bits().to_f32_norm();
+        [v[0], v[1]]
+    }
+}
+
+/// Dimensions 0–3 of sample `index` (< 2¹⁶) of the Owen-scrambled Sobol sequence `seed`
+/// (what the tests compare with the crate).
+#[cfg(test)]
+fn sample_4d(index: u32, seed: u32) -> [f32; 4] {
+    let p = SobolPoint::new(index, seed);
+    let ([a, b], [c, d]) = (p.dims(0), p.dims(1));
+    [a, b, c, d]
 }
 
 #[cfg(test)]

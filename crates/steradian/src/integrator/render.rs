@@ -219,6 +219,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
     // the others finish theirs (a barrier per pass idled 4 % of the cores on a 64-spp Cornell
     // box). This thread merges each pass into the film, in item order, once all its tiles are
     // in, so the film still only ever holds complete passes.
+    // blocks as `Film::create_block` makes them (the film itself is borrowed for merging)
     let filter = film.filter;
     let render_item = |item: &WorkItem| -> Option<ImageBlock> {
         let WorkItem { offset, size, s0, s1 } = *item;
@@ -259,17 +260,26 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
         }
         Some(block)
     };
+    // Items are taken at most `window` (the largest pass) ahead of the first unmerged one, so
+    // blocks waiting for a slow tile of an earlier pass hold at most about two passes' worth
+    // of memory, as the barrier per pass held one.
+    let window = pass_ends.iter().scan(0, |start, &(end, _)| Some(end - std::mem::replace(start, end))).max().unwrap_or(1);
+    let merged_items = AtomicUsize::new(0);
     let next = AtomicUsize::new(0);
     let mut spp_done = 0u32;
     let mut film_blocks: Vec<Option<ImageBlock>> = (0..items.len()).map(|_| None).collect();
     std::thread::scope(|scope| {
         let (tx, rx) = mpsc::channel::<(usize, Option<ImageBlock>)>();
         for _ in 0..pool.current_num_threads() {
-            let (tx, next, items, render_item) = (tx.clone(), &next, &items, &render_item);
+            let (tx, next, merged_items, items, render_item) = (tx.clone(), &next, &merged_items, &items, &render_item);
             scope.spawn(move || loop {
                 let i = next.fetch_add(1, Ordering::Relaxed);
                 if i >= items.len() || cancelled() {
                     break;
+                }
+                // the items of the first unmerged pass are never held back, so this ends
+                while i >= merged_items.load(Ordering::Acquire) + window && !cancelled() {
+                    std::thread::sleep(Duration::from_micros(100));
                 }
                 let block = render_item(&items[i]);
                 let stop = block.is_none();
@@ -293,6 +303,7 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
                     film.merge(&b.take().expect("checked above"));
                 }
                 (merged, spp_done, pass) = (end, last, pass + 1);
+                merged_items.store(merged, Ordering::Release);
             }
         }
     });

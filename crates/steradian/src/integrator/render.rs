@@ -5,7 +5,8 @@
 //! and the film only ever holds complete passes. Stopping early (Ctrl-C) therefore still
 //! yields an image with the same sample count everywhere. Threads take work items (a tile and
 //! a range of its samples) from one queue in pass order, without waiting for each other at the
-//! end of a pass; the calling thread merges a pass into the film once all its items are in.
+//! end of a pass (but at most one pass ahead of the first unmerged one); the calling thread
+//! merges a pass into the film once all its items are in.
 //! Every sample's random numbers are addressed by (pixel, sample index, seed), and items are
 //! merged in a fixed order, so the image is bit-for-bit the same for any thread count.
 

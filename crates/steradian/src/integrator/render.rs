@@ -198,9 +198,12 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
     // film and the pass only, never on the thread count, so images are reproducible.
     let mut items: Vec<WorkItem> = Vec::new();
     let mut pass_ends = Vec::new();
+    // the most items in one pass
+    let mut window = 1;
     for pass in bounds.windows(2) {
         // samples [first, last) of every pixel
         let (first, last) = (pass[0], pass[1]);
+        let pass_start = items.len();
         let per_pass = last - first;
         let chunks = (WORK_ITEMS_PER_PASS.div_ceil(tiles.len() as u32)).clamp(1, per_pass);
         for &(offset, size) in &tiles {
@@ -213,13 +216,9 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
             }
         }
         pass_ends.push((items.len(), last));
+        window = window.max(items.len() - pass_start);
     }
 
-    // One tile at a time from a shared counter, in pass order, with no barrier between
-    // passes: a thread that finishes its last tile of a pass starts on the next pass while
-    // the others finish theirs (a barrier per pass idled 4 % of the cores on a 64-spp Cornell
-    // box). This thread merges each pass into the film, in item order, once all its tiles are
-    // in, so the film still only ever holds complete passes.
     // blocks as `Film::create_block` makes them (the film itself is borrowed for merging)
     let filter = film.filter;
     let render_item = |item: &WorkItem| -> Option<ImageBlock> {
@@ -261,16 +260,20 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
         }
         Some(block)
     };
-    // Items are taken at most `window` (the largest pass) ahead of the first unmerged one, so
-    // blocks waiting for a slow tile of an earlier pass hold at most about two passes' worth
-    // of memory, as the barrier per pass held one.
-    let window = pass_ends.iter().scan(0, |start, &(end, _)| Some(end - std::mem::replace(start, end))).max().unwrap_or(1);
+    // One tile at a time from a shared counter, in pass order, with no barrier between
+    // passes: a thread that finishes its last tile of a pass starts on the next pass while
+    // the others finish theirs (a barrier per pass idled 4 % of the cores on a 64-spp Cornell
+    // box). This thread merges each pass into the film, in item order, once all its tiles are
+    // in, so the film still only ever holds complete passes. Items are taken at most `window`
+    // (the largest pass) ahead of the first unmerged one, so blocks waiting for a slow tile of
+    // an earlier pass hold at most about two passes' worth of memory, as the barrier per pass
+    // held one.
     let merged_items = AtomicUsize::new(0);
     let next = AtomicUsize::new(0);
     let mut spp_done = 0u32;
     let mut film_blocks: Vec<Option<ImageBlock>> = (0..items.len()).map(|_| None).collect();
     std::thread::scope(|scope| {
-        let (tx, rx) = mpsc::channel::<(usize, Option<ImageBlock>)>();
+        let (tx, rx) = mpsc::channel::<(usize, ImageBlock)>();
         for _ in 0..pool.current_num_threads() {
             let (tx, next, merged_items, items, render_item) = (tx.clone(), &next, &merged_items, &items, &render_item);
             scope.spawn(move || loop {
@@ -282,9 +285,9 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
                 while i >= merged_items.load(Ordering::Acquire) + window && !cancelled() {
                     std::thread::sleep(Duration::from_micros(100));
                 }
-                let block = render_item(&items[i]);
-                let stop = block.is_none();
-                if tx.send((i, block)).is_err() || stop {
+                // an item cut short by a cancel is not sent, so its pass is never merged
+                let Some(block) = render_item(&items[i]) else { break };
+                if tx.send((i, block)).is_err() {
                     break;
                 }
             });
@@ -292,8 +295,6 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
         drop(tx);
         let (mut pass, mut merged) = (0usize, 0usize);
         for (i, block) in rx {
-            // an item cut short by a cancel never arrives, so its pass is never merged
-            let Some(block) = block else { continue };
             film_blocks[i] = Some(block);
             while pass < pass_ends.len() {
                 let (end, last) = pass_ends[pass];

@@ -3,7 +3,8 @@
 //! Both compute the same thing with the same floating-point operations in the same order (no
 //! FMA), so they return bit-identical distances and barycentrics; `tests.rs` checks both against
 //! brute force. The AVX2 node test handles the 8 boxes of a [`Node8`] in one 256-bit register
-//! per plane; the triangle test handles the 4 triangles of a [`Tri4`] in 128-bit registers.
+//! per plane; the triangle test handles two [`Tri4`] packets (8 triangles) in 256-bit
+//! registers, so that a leaf of two packets, the common case in small scenes, is one test.
 
 use super::traverse::{Kernel, LaneHit, TravRay};
 use super::triangle::{edge_functions_f64, watertight_core};
@@ -55,6 +56,23 @@ unsafe impl Kernel for Scalar {
     unsafe fn tri4_any(p: &Tri4, r: &TravRay, t_max: f32) -> bool {
         (0..4).any(|lane| scalar_lane(p, r, lane, t_max).is_some())
     }
+
+    #[inline(always)]
+    unsafe fn tri8(p: &Tri4, q: &Tri4, r: &TravRay, mut t_max: f32) -> Option<LaneHit> {
+        let mut best = None;
+        for lane in 0..8 {
+            if let Some((t, b1, b2)) = scalar_lane(if lane < 4 { p } else { q }, r, lane % 4, t_max) {
+                t_max = t;
+                best = Some((lane, t, b1, b2));
+            }
+        }
+        best
+    }
+
+    #[inline(always)]
+    unsafe fn tri8_any(p: &Tri4, q: &Tri4, r: &TravRay, t_max: f32) -> bool {
+        (0..8).any(|lane| scalar_lane(if lane < 4 { p } else { q }, r, lane % 4, t_max).is_some())
+    }
 }
 
 #[inline(always)]
@@ -86,78 +104,163 @@ mod avx2 {
         t_min: __m256,
         near: [usize; 3],
         far: [usize; 3],
-        // triangle test (4 lanes)
+        // triangle test
         k: [usize; 3],
-        o_k: [__m128; 3],
-        s: [__m128; 3],
-        t_min4: __m128,
+        o_k: [__m256; 3],
+        s: [__m256; 3],
     }
 
-    /// Loads 4 lanes.
-    #[inline(always)]
-    fn load4(v: &[f32; 4]) -> __m128 {
-        // SAFETY: `v` is 4 readable f32; SSE is part of the x86-64 baseline.
-        unsafe { _mm_loadu_ps(v.as_ptr()) }
+    /// The vector operations of the triangle test, for 4 lanes (SSE) and 8 lanes (AVX), so that
+    /// one body ([`tri_lanes`]) serves both widths. Every method needs AVX (VEX encoding),
+    /// which the kernel's contract provides.
+    trait Lanes: Copy {
+        type Array: Copy + Default + AsRef<[f32]> + AsMut<[f32]>;
+        fn splat(x: f32) -> Self;
+        /// The lower lanes of a broadcast 8-lane register.
+        fn from_broadcast(x: __m256) -> Self;
+        fn load(a: &Self::Array) -> Self;
+        fn store(self) -> Self::Array;
+        fn add(self, o: Self) -> Self;
+        fn sub(self, o: Self) -> Self;
+        fn mul(self, o: Self) -> Self;
+        fn div(self, o: Self) -> Self;
+        fn or(self, o: Self) -> Self;
+        fn and(self, o: Self) -> Self;
+        /// `!self & o`.
+        fn andnot(self, o: Self) -> Self;
+        /// Ordered comparisons (false with NaN) ...
+        fn eq(self, o: Self) -> Self;
+        fn lt(self, o: Self) -> Self;
+        fn gt(self, o: Self) -> Self;
+        /// ... and the unordered `!=` (true with NaN).
+        fn neq(self, o: Self) -> Self;
+        fn movemask(self) -> i32;
     }
 
-    #[inline(always)]
-    fn store4(v: __m128) -> [f32; 4] {
-        let mut out = [0.0f32; 4];
-        // SAFETY: `out` is 4 writable f32; SSE is part of the x86-64 baseline.
-        unsafe { _mm_storeu_ps(out.as_mut_ptr(), v) };
-        out
-    }
-
-    /// Watertight test of the 4 triangles (see `triangle.rs`; same operations, same order):
-    /// the valid-lane mask, distances and barycentrics (b1, b2).
-    #[inline(always)]
-    fn tri4_lanes(p: &Tri4, r: &Avx2Ray, t_max: f32) -> (i32, __m128, __m128, __m128) {
-        let [kx, ky, kz] = r.k;
-        let [sx, sy, sz] = r.s;
-        // SAFETY (all intrinsics below): SSE/SSE2 are part of the x86-64 baseline.
-        unsafe {
-            let rel = |v: usize| {
-                (
-                    _mm_sub_ps(load4(&p.v[v][kx]), r.o_k[0]),
-                    _mm_sub_ps(load4(&p.v[v][ky]), r.o_k[1]),
-                    _mm_sub_ps(load4(&p.v[v][kz]), r.o_k[2]),
-                )
-            };
-            let (ax, ay, az) = rel(0);
-            let (bx, by, bz) = rel(1);
-            let (cx, cy, cz) = rel(2);
-            let (ax, ay) = (_mm_sub_ps(ax, _mm_mul_ps(sx, az)), _mm_sub_ps(ay, _mm_mul_ps(sy, az)));
-            let (bx, by) = (_mm_sub_ps(bx, _mm_mul_ps(sx, bz)), _mm_sub_ps(by, _mm_mul_ps(sy, bz)));
-            let (cx, cy) = (_mm_sub_ps(cx, _mm_mul_ps(sx, cz)), _mm_sub_ps(cy, _mm_mul_ps(sy, cz)));
-            let mut u = _mm_sub_ps(_mm_mul_ps(cx, by), _mm_mul_ps(cy, bx));
-            let mut v = _mm_sub_ps(_mm_mul_ps(ax, cy), _mm_mul_ps(ay, cx));
-            let mut w = _mm_sub_ps(_mm_mul_ps(bx, ay), _mm_mul_ps(by, ax));
-            let zero = _mm_setzero_ps();
-            let on_edge = _mm_or_ps(_mm_or_ps(_mm_cmpeq_ps(u, zero), _mm_cmpeq_ps(v, zero)), _mm_cmpeq_ps(w, zero));
-            let mut edge_lanes = _mm_movemask_ps(on_edge);
-            if edge_lanes != 0 {
-                // rare: redo the edge functions of those lanes in f64, as the scalar test does
-                let (mut uu, mut vv, mut ww) = (store4(u), store4(v), store4(w));
-                let q = [ax, ay, bx, by, cx, cy].map(store4);
-                while edge_lanes != 0 {
-                    let l = edge_lanes.trailing_zeros() as usize;
-                    edge_lanes &= edge_lanes - 1;
-                    (uu[l], vv[l], ww[l]) = edge_functions_f64(q.map(|c| c[l]));
+    macro_rules! lanes {
+        ($t:ty, $n:expr, $set1:ident, $from:expr, $loadu:ident, $storeu:ident, $add:ident, $sub:ident, $mul:ident, $div:ident, $or:ident, $and:ident, $andnot:ident, $cmp:ident, $movemask:ident) => {
+            // SAFETY (every method): AVX is available (the kernel's contract); loads and stores
+            // touch exactly the array given.
+            impl Lanes for $t {
+                type Array = [f32; $n];
+                #[inline(always)]
+                fn splat(x: f32) -> Self { unsafe { $set1(x) } }
+                #[inline(always)]
+                fn from_broadcast(x: __m256) -> Self { unsafe { $from(x) } }
+                #[inline(always)]
+                fn load(a: &[f32; $n]) -> Self { unsafe { $loadu(a.as_ptr()) } }
+                #[inline(always)]
+                fn store(self) -> [f32; $n] {
+                    let mut out = [0.0f32; $n];
+                    unsafe { $storeu(out.as_mut_ptr(), self) };
+                    out
                 }
-                (u, v, w) = (load4(&uu), load4(&vv), load4(&ww));
+                #[inline(always)]
+                fn add(self, o: Self) -> Self { unsafe { $add(self, o) } }
+                #[inline(always)]
+                fn sub(self, o: Self) -> Self { unsafe { $sub(self, o) } }
+                #[inline(always)]
+                fn mul(self, o: Self) -> Self { unsafe { $mul(self, o) } }
+                #[inline(always)]
+                fn div(self, o: Self) -> Self { unsafe { $div(self, o) } }
+                #[inline(always)]
+                fn or(self, o: Self) -> Self { unsafe { $or(self, o) } }
+                #[inline(always)]
+                fn and(self, o: Self) -> Self { unsafe { $and(self, o) } }
+                #[inline(always)]
+                fn andnot(self, o: Self) -> Self { unsafe { $andnot(self, o) } }
+                #[inline(always)]
+                fn eq(self, o: Self) -> Self { unsafe { $cmp::<_CMP_EQ_OQ>(self, o) } }
+                #[inline(always)]
+                fn lt(self, o: Self) -> Self { unsafe { $cmp::<_CMP_LT_OQ>(self, o) } }
+                #[inline(always)]
+                fn gt(self, o: Self) -> Self { unsafe { $cmp::<_CMP_GT_OQ>(self, o) } }
+                #[inline(always)]
+                fn neq(self, o: Self) -> Self { unsafe { $cmp::<_CMP_NEQ_UQ>(self, o) } }
+                #[inline(always)]
+                fn movemask(self) -> i32 { unsafe { $movemask(self) } }
             }
-            let neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, zero), _mm_cmplt_ps(v, zero)), _mm_cmplt_ps(w, zero));
-            let pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, zero), _mm_cmpgt_ps(v, zero)), _mm_cmpgt_ps(w, zero));
-            let det = _mm_add_ps(_mm_add_ps(u, v), w);
-            let (az, bz, cz) = (_mm_mul_ps(sz, az), _mm_mul_ps(sz, bz), _mm_mul_ps(sz, cz));
-            let t_scaled = _mm_add_ps(_mm_add_ps(_mm_mul_ps(u, az), _mm_mul_ps(v, bz)), _mm_mul_ps(w, cz));
-            let rcp = _mm_div_ps(_mm_set1_ps(1.0), det);
-            let t = _mm_mul_ps(t_scaled, rcp);
-            // ordered comparisons: NaN (padding lanes, degenerate triangles) fails them
-            let in_range = _mm_and_ps(_mm_cmpgt_ps(t, r.t_min4), _mm_cmplt_ps(t, _mm_set1_ps(t_max)));
-            let valid = _mm_andnot_ps(_mm_and_ps(neg, pos), _mm_and_ps(_mm_cmpneq_ps(det, zero), in_range));
-            (_mm_movemask_ps(valid), t, _mm_mul_ps(v, rcp), _mm_mul_ps(w, rcp))
+        };
+    }
+
+    /// The identity, in the shape of `_mm256_castps256_ps128`.
+    #[inline(always)]
+    unsafe fn unchanged(x: __m256) -> __m256 {
+        x
+    }
+
+    lanes!(__m128, 4, _mm_set1_ps, _mm256_castps256_ps128, _mm_loadu_ps, _mm_storeu_ps, _mm_add_ps, _mm_sub_ps, _mm_mul_ps, _mm_div_ps, _mm_or_ps, _mm_and_ps, _mm_andnot_ps, _mm_cmp_ps, _mm_movemask_ps);
+    lanes!(__m256, 8, _mm256_set1_ps, unchanged, _mm256_loadu_ps, _mm256_storeu_ps, _mm256_add_ps, _mm256_sub_ps, _mm256_mul_ps, _mm256_div_ps, _mm256_or_ps, _mm256_and_ps, _mm256_andnot_ps, _mm256_cmp_ps, _mm256_movemask_ps);
+
+    /// Watertight test of 4 or 8 triangles (see `triangle.rs`; same operations, same order):
+    /// the valid-lane mask, distances and barycentrics (b1, b2). `vertex(v, axis)` loads
+    /// coordinate `axis` of vertex `v` of every lane.
+    #[inline(always)]
+    fn tri_lanes<V: Lanes>(vertex: impl Fn(usize, usize) -> V, r: &Avx2Ray, t_max: f32) -> (i32, V, V, V) {
+        let [kx, ky, kz] = r.k;
+        let [o_x, o_y, o_z] = r.o_k.map(V::from_broadcast);
+        let [sx, sy, sz] = r.s.map(V::from_broadcast);
+        let rel = |v: usize| (vertex(v, kx).sub(o_x), vertex(v, ky).sub(o_y), vertex(v, kz).sub(o_z));
+        let (ax, ay, az) = rel(0);
+        let (bx, by, bz) = rel(1);
+        let (cx, cy, cz) = rel(2);
+        let (ax, ay) = (ax.sub(sx.mul(az)), ay.sub(sy.mul(az)));
+        let (bx, by) = (bx.sub(sx.mul(bz)), by.sub(sy.mul(bz)));
+        let (cx, cy) = (cx.sub(sx.mul(cz)), cy.sub(sy.mul(cz)));
+        let mut u = cx.mul(by).sub(cy.mul(bx));
+        let mut v = ax.mul(cy).sub(ay.mul(cx));
+        let mut w = bx.mul(ay).sub(by.mul(ax));
+        let zero = V::splat(0.0);
+        let mut edge_lanes = u.eq(zero).or(v.eq(zero)).or(w.eq(zero)).movemask();
+        if edge_lanes != 0 {
+            // rare: redo the edge functions of those lanes in f64, as the scalar test does
+            let (mut uu, mut vv, mut ww) = (u.store(), v.store(), w.store());
+            let e = [ax, ay, bx, by, cx, cy].map(V::store);
+            while edge_lanes != 0 {
+                let l = edge_lanes.trailing_zeros() as usize;
+                edge_lanes &= edge_lanes - 1;
+                (uu.as_mut()[l], vv.as_mut()[l], ww.as_mut()[l]) = edge_functions_f64(e.map(|c| c.as_ref()[l]));
+            }
+            (u, v, w) = (V::load(&uu), V::load(&vv), V::load(&ww));
         }
+        let neg = u.lt(zero).or(v.lt(zero)).or(w.lt(zero));
+        let pos = u.gt(zero).or(v.gt(zero)).or(w.gt(zero));
+        let det = u.add(v).add(w);
+        let (az, bz, cz) = (sz.mul(az), sz.mul(bz), sz.mul(cz));
+        let t_scaled = u.mul(az).add(v.mul(bz)).add(w.mul(cz));
+        let rcp = V::splat(1.0).div(det);
+        let t = t_scaled.mul(rcp);
+        // ordered comparisons: NaN (padding lanes, degenerate triangles) fails them
+        let in_range = t.gt(V::from_broadcast(r.t_min)).and(t.lt(V::splat(t_max)));
+        let valid = neg.and(pos).andnot(det.neq(zero).and(in_range));
+        (valid.movemask(), t, v.mul(rcp), w.mul(rcp))
+    }
+
+    /// The closest valid lane of a [`tri_lanes`] result; ties go to the lowest lane.
+    #[inline(always)]
+    fn closest_lane<V: Lanes>((mut mask, t, b1, b2): (i32, V, V, V)) -> Option<LaneHit> {
+        if mask == 0 {
+            return None;
+        }
+        let t = t.store();
+        let t = t.as_ref();
+        let mut best = mask.trailing_zeros() as usize;
+        mask &= mask - 1;
+        while mask != 0 {
+            let l = mask.trailing_zeros() as usize;
+            mask &= mask - 1;
+            if t[l] < t[best] {
+                best = l;
+            }
+        }
+        Some((best, t[best], b1.store().as_ref()[best], b2.store().as_ref()[best]))
+    }
+
+    /// Lanes 0–3 from `lo`, 4–7 from `hi`.
+    #[inline(always)]
+    fn load4x2(lo: &[f32; 4], hi: &[f32; 4]) -> __m256 {
+        // SAFETY: both are 4 readable f32; AVX is available (the kernel's contract).
+        unsafe { _mm256_insertf128_ps::<1>(_mm256_castps128_ps256(_mm_loadu_ps(lo.as_ptr())), _mm_loadu_ps(hi.as_ptr())) }
     }
 
     // SAFETY: every method is only called when the CPU has AVX2 (the trait's contract). They
@@ -178,9 +281,8 @@ mod avx2 {
                 near: r.near,
                 far: r.far,
                 k: r.wt.k,
-                o_k: r.o_k.map(|x| _mm_set1_ps(x)),
-                s: r.wt.s.map(|x| _mm_set1_ps(x)),
-                t_min4: _mm_set1_ps(r.t_min),
+                o_k: r.o_k.map(|x| _mm256_set1_ps(x)),
+                s: r.wt.s.map(|x| _mm256_set1_ps(x)),
             } }
         }
 
@@ -207,26 +309,22 @@ mod avx2 {
 
         #[inline(always)]
         unsafe fn tri4(p: &Tri4, r: &Avx2Ray, t_max: f32) -> Option<LaneHit> {
-            let (mut mask, t, b1, b2) = tri4_lanes(p, r, t_max);
-            if mask == 0 {
-                return None;
-            }
-            let t = store4(t);
-            let mut best = mask.trailing_zeros() as usize;
-            mask &= mask - 1;
-            while mask != 0 {
-                let l = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                if t[l] < t[best] {
-                    best = l;
-                }
-            }
-            Some((best, t[best], store4(b1)[best], store4(b2)[best]))
+            closest_lane(tri_lanes(|v, a| __m128::load(&p.v[v][a]), r, t_max))
         }
 
         #[inline(always)]
         unsafe fn tri4_any(p: &Tri4, r: &Avx2Ray, t_max: f32) -> bool {
-            tri4_lanes(p, r, t_max).0 != 0
+            tri_lanes(|v, a| __m128::load(&p.v[v][a]), r, t_max).0 != 0
+        }
+
+        #[inline(always)]
+        unsafe fn tri8(p: &Tri4, q: &Tri4, r: &Avx2Ray, t_max: f32) -> Option<LaneHit> {
+            closest_lane(tri_lanes(|v, a| load4x2(&p.v[v][a], &q.v[v][a]), r, t_max))
+        }
+
+        #[inline(always)]
+        unsafe fn tri8_any(p: &Tri4, q: &Tri4, r: &Avx2Ray, t_max: f32) -> bool {
+            tri_lanes(|v, a| load4x2(&p.v[v][a], &q.v[v][a]), r, t_max).0 != 0
         }
     }
 }

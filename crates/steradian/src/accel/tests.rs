@@ -70,12 +70,21 @@ fn isas() -> Vec<Isa> {
     [Isa::Scalar, Isa::Avx2].into_iter().filter(|i| i.is_supported()).collect()
 }
 
+/// Triangle leaves of one packet (tested 4 lanes wide) and of two or more (tested in pairs,
+/// 8 lanes wide).
+fn leaf_kinds(accel: &Accel) -> (usize, usize) {
+    let leaves = accel.nodes.iter().flat_map(|n| n.child).filter(|&c| c & super::wide::LEAF != 0 && c & super::wide::ANALYTIC == 0);
+    leaves.fold((0, 0), |(one, more), c| if super::wide::leaf_range(c).len() == 1 { (one + 1, more) } else { (one, more + 1) })
+}
+
 #[test]
 fn closest_hit_and_occlusion_match_brute_force() {
     let shapes = scene(3);
     for isa in isas() {
         let accel = Accel::build_with_isa(&shapes, isa);
         assert_eq!(accel.isa(), isa);
+        let (single, paired) = leaf_kinds(&accel);
+        assert!(single > 0 && paired > 0, "both packet tests must run: {single} one-packet leaves, {paired} larger");
         let b = accel.bounds();
         assert!(b.min.cmple(Vec3::splat(-10.0)).all() && b.max.cmpge(Vec3::splat(10.0)).all());
         let mut r = Pcg32::new(99, 5);

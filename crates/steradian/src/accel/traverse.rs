@@ -93,16 +93,28 @@ pub(super) unsafe trait Kernel {
     /// # Safety
     /// The CPU supports the kernel's instruction set.
     unsafe fn node(n: &Node8, r: &Self::Ray, t_max: f32, dist: &mut [f32; WIDTH]) -> u32;
-    /// The closest of the 4 triangles hit with `t_min < t < t_max`; ties go to the lowest lane.
+    /// The closest of the 4 triangles of `p` hit with `t_min < t < t_max`; ties go to the
+    /// lowest lane.
     ///
     /// # Safety
     /// The CPU supports the kernel's instruction set.
     unsafe fn tri4(p: &Tri4, r: &Self::Ray, t_max: f32) -> Option<LaneHit>;
-    /// Whether any of the 4 triangles is hit with `t_min < t < t_max`.
+    /// Whether any of the 4 triangles of `p` is hit with `t_min < t < t_max`.
     ///
     /// # Safety
     /// The CPU supports the kernel's instruction set.
     unsafe fn tri4_any(p: &Tri4, r: &Self::Ray, t_max: f32) -> bool;
+    /// The closest of the 8 triangles of packets `p` (lanes 0–3) and `q` (lanes 4–7) hit with
+    /// `t_min < t < t_max`; ties go to the lowest lane.
+    ///
+    /// # Safety
+    /// The CPU supports the kernel's instruction set.
+    unsafe fn tri8(p: &Tri4, q: &Tri4, r: &Self::Ray, t_max: f32) -> Option<LaneHit>;
+    /// Whether any of the 8 triangles of `p` and `q` is hit with `t_min < t < t_max`.
+    ///
+    /// # Safety
+    /// The CPU supports the kernel's instruction set.
+    unsafe fn tri8_any(p: &Tri4, q: &Tri4, r: &Self::Ray, t_max: f32) -> bool;
 }
 
 #[derive(Clone, Copy)]
@@ -231,11 +243,17 @@ pub(super) unsafe fn closest<K: Kernel>(accel: &Accel, shapes: &[Shape], ray: &R
                 continue;
             }
         } else if code & ANALYTIC == 0 {
-            for i in leaf_range(code) {
-                // SAFETY: forwarded from the caller.
-                if let Some((lane, t, b1, b2)) = unsafe { K::tri4(&accel.tris[i], &kr, t_max) } {
+            let range = leaf_range(code);
+            for (pair, first) in accel.tris[range.clone()].chunks(2).zip(range.step_by(2)) {
+                // SAFETY (both): forwarded from the caller.
+                let hit_pair = match pair {
+                    [p, q] => unsafe { K::tri8(p, q, &kr, t_max) },
+                    [p] => unsafe { K::tri4(p, &kr, t_max) },
+                    _ => unreachable!("chunks of 2"),
+                };
+                if let Some((lane, t, b1, b2)) = hit_pair {
                     t_max = t;
-                    hit = Some((i as u32, lane as u32, b1, b2));
+                    hit = Some(((first + lane / 4) as u32, (lane % 4) as u32, b1, b2));
                 }
             }
         } else if code != EMPTY_CHILD {
@@ -306,9 +324,14 @@ pub(super) unsafe fn any<K: Kernel>(accel: &Accel, shapes: &[Shape], ray: &Ray, 
                 continue;
             }
         } else if code & ANALYTIC == 0 {
-            for p in &accel.tris[leaf_range(code)] {
-                // SAFETY: forwarded from the caller.
-                if unsafe { K::tri4_any(p, &kr, t_max) } {
+            for pair in accel.tris[leaf_range(code)].chunks(2) {
+                // SAFETY (both): forwarded from the caller.
+                let any_hit = match pair {
+                    [p, q] => unsafe { K::tri8_any(p, q, &kr, t_max) },
+                    [p] => unsafe { K::tri4_any(p, &kr, t_max) },
+                    _ => unreachable!("chunks of 2"),
+                };
+                if any_hit {
                     return true;
                 }
             }

@@ -103,7 +103,8 @@ fn leaf_code(start: usize, count: usize, analytic: bool) -> u32 {
 pub enum Isa {
     /// Portable scalar code.
     Scalar,
-    /// x86-64 AVX2: 8 boxes per instruction, 4 triangles per SSE instruction (VEX encoded).
+    /// x86-64 AVX2: 8 boxes per instruction; 8 triangles (two packets of a leaf) per
+    /// instruction, or 4 (a leaf's odd last packet) per SSE instruction (VEX encoded).
     Avx2,
 }
 

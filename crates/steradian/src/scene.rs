@@ -47,6 +47,42 @@ pub struct Scene {
     /// Next-event estimation's light choice: probability of each emitter, and the running sum.
     light_pmf: Vec<f32>,
     light_cdf: Vec<f32>,
+    last_vertex: LastVertexLights,
+}
+
+/// What the emitters allow at a path's last vertex (`integrator/path.rs`, "The last vertex").
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum LastVertexLights {
+    /// Only delta lights (or none): no ray can hit an emitter, so a BSDF sample taken only to
+    /// find emitters never finds one.
+    Unreachable,
+    /// At most [`LAST_VERTEX_MAX_CHECKS`] emitters, all spheres, rectangles or delta lights:
+    /// whether light sampling alone is bounded is checked at each last vertex.
+    CheckEach,
+    /// Other emitters (meshes, disks, cylinders, environments, or many lights): always MIS.
+    Mis,
+}
+
+/// The most emitters [`LastVertexLights::CheckEach`] checks at a vertex (one distance test
+/// each).
+const LAST_VERTEX_MAX_CHECKS: usize = 16;
+
+impl LastVertexLights {
+    fn of(emitters: &[Emitter], shapes: &[Shape]) -> LastVertexLights {
+        if emitters.iter().all(|e| e.support() == Support::Delta) {
+            return LastVertexLights::Unreachable;
+        }
+        let checkable = |e: &Emitter| match e {
+            Emitter::Area(a) => matches!(shapes[a.shape as usize], Shape::Sphere(_) | Shape::Rectangle(_)),
+            Emitter::Constant(_) => false,
+            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => true,
+        };
+        if emitters.len() <= LAST_VERTEX_MAX_CHECKS && emitters.iter().all(checkable) {
+            LastVertexLights::CheckEach
+        } else {
+            LastVertexLights::Mis
+        }
+    }
 }
 
 impl Scene {
@@ -72,6 +108,7 @@ impl Scene {
         let accel = Accel::build(&shapes);
         let (light_pmf, light_cdf) = integrator.light_selection().distribution(&desc.emitters, &shapes, accel.bounds());
         Ok(Scene {
+            last_vertex: LastVertexLights::of(&desc.emitters, &shapes),
             light_pmf,
             light_cdf,
             shapes,
@@ -143,6 +180,20 @@ impl Scene {
             es.pdf *= sel;
         }
         Some(es)
+    }
+
+    /// Whether next-event estimation alone may take all the light arriving at `p`, a path's last
+    /// vertex with BSDF `bsdf`, so that the BSDF sample multiple importance sampling would add
+    /// can be left out: where no ray can reach an emitter (any BSDF), or where `bsdf` is
+    /// Lambertian and every light's samples have bounded weights at `p`
+    /// ([`Emitter::light_sampling_bounded`]).
+    #[inline]
+    pub fn light_sampling_suffices(&self, bsdf: &Bsdf, p: Vec3) -> bool {
+        match self.last_vertex {
+            LastVertexLights::Unreachable => true,
+            LastVertexLights::CheckEach => bsdf.is_lambertian() && self.emitters.iter().all(|e| e.light_sampling_bounded(&self.shapes, p)),
+            LastVertexLights::Mis => false,
+        }
     }
 
     /// True when nothing blocks the light sample `es` seen from the surface point `p` with

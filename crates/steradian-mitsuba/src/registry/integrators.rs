@@ -50,7 +50,7 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
                 None => Branches::Auto,
                 Some(v) => parse_branches(v).map_err(at_property(node, &["branches"]))?,
             };
-            Integrator::Path(PathTracer { max_depth, rr_depth, emitters: visibility(p.get_bool("hide_emitters")?), light_selection: light_selection(node)?, branches })
+            Integrator::Path(PathTracer { max_depth, rr_depth, emitters: visibility(p.get_bool("hide_emitters")?), light_selection: light_selection(node)?, branches, ..PathTracer::default() })
         }
         "direct" => {
             let shading = count(node, "shading_samples", 1)?;

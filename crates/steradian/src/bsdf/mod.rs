@@ -163,6 +163,17 @@ impl Bsdf {
         dispatch!(self, b => b.sample(sp, wo, u1, u2))
     }
 
+    /// True for a Lambertian surface (`diffuse`, or `twosided` with `diffuse` on both sides):
+    /// ρ is a constant, so light sampling alone weighs its samples by the cosine only.
+    #[inline]
+    pub fn is_lambertian(&self) -> bool {
+        match self {
+            Bsdf::Diffuse(_) => true,
+            Bsdf::TwoSided(b) => b.front.is_lambertian() && b.back.is_lambertian(),
+            _ => false,
+        }
+    }
+
     /// True when some lobe has a finite density, so that light sampling can help.
     #[inline]
     pub fn has_smooth_lobe(&self) -> bool {

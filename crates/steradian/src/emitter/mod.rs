@@ -108,6 +108,19 @@ impl Emitter {
         }
     }
 
+    /// Whether light sampling alone estimates this light at a Lambertian point `p` with bounded
+    /// weights (see [`Shape::light_sampling_bounded`]). Delta lights: yes (no ray can hit them,
+    /// so a BSDF sample adds nothing); environments: no (their uniform directions waste the
+    /// half below the horizon and ignore the cosine).
+    #[inline]
+    pub fn light_sampling_bounded(&self, shapes: &[Shape], p: Vec3) -> bool {
+        match self {
+            Emitter::Area(e) => shapes[e.shape as usize].light_sampling_bounded(p),
+            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => true,
+            Emitter::Constant(_) => false,
+        }
+    }
+
     /// True for lights at infinity that rays escaping the scene see.
     #[inline]
     pub fn is_environment(&self) -> bool {

@@ -30,6 +30,25 @@
 //! only adds work; so when the scene does not set `branches`, a pilot before the render
 //! measures both sides and picks the count with the least noise per unit of work
 //! (`branching.rs`). `spp` keeps Mitsuba's meaning: camera samples per pixel.
+//!
+//! **The last vertex.** From the vertex after which `max_depth` allows one more segment, the
+//! BSDF sample and its ray serve only to find an emitter (MIS's second strategy); nothing
+//! continues from there. Where light sampling alone is good, steradian leaves them out and
+//! gives the light sample MIS weight 1 (one strategy instead of two: still unbiased):
+//! - in scenes whose lights are all delta lights (point, spot, directional), at every BSDF:
+//!   no ray can hit an emitter, so the BSDF sample never finds light;
+//! - at Lambertian vertices (`diffuse`), when every light of the scene is a sphere seen from
+//!   outside, a rectangle at least √area away, or a delta light
+//!   ([`Scene::light_sampling_suffices`]): then each light sample's weight (radiance × cosine /
+//!   density) is bounded, so light sampling alone has no fireflies, and MIS's BSDF sample
+//!   would add a ray for almost no weight.
+//!
+//! Glossy and specular vertices, other light shapes (area-sampled meshes, disks, cylinders,
+//! where 1/d² is unbounded near the light), environments and unbounded `max_depth` keep MIS.
+//! On Veach's MIS scene (`max_depth` 3, sphere lights, diffuse walls) the render is 6.5 %
+//! faster (single thread, 8 spp, median of 7 alternating runs; other runs gave 2–13 %) at the
+//! same relative variance (6.362e-4 against 6.361e-4, 4 seeds); with `max_depth` 2 (direct
+//! light only) 15.5 % faster.
 
 use glam::Vec3;
 
@@ -59,6 +78,20 @@ pub struct PathTracer {
     pub light_selection: LightSelection,
     /// How many independent paths continue from each camera ray's first surface hit.
     pub branches: Branches,
+    /// How a path's last vertex estimates the light arriving there.
+    pub last_vertex: LastVertex,
+}
+
+/// The estimator at a path's last vertex (the vertex from which only one more segment is
+/// allowed: `max_depth` − 1 segments traced so far); see the module docs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum LastVertex {
+    /// Light sampling alone where [`Scene::light_sampling_suffices`], without the BSDF
+    /// sample and its ray; MIS elsewhere.
+    #[default]
+    LightOnlyWhereBounded,
+    /// Always MIS of light and BSDF sampling, as Mitsuba does (for tests and comparisons).
+    Mis,
 }
 
 /// The number of paths that continue from a camera ray's first hit.
@@ -84,7 +117,7 @@ impl Branches {
 
 impl Default for PathTracer {
     fn default() -> Self {
-        PathTracer { max_depth: None, rr_depth: 5, emitters: EmitterVisibility::Visible, light_selection: LightSelection::Uniform, branches: Branches::Auto }
+        PathTracer { max_depth: None, rr_depth: 5, emitters: EmitterVisibility::Visible, light_selection: LightSelection::Uniform, branches: Branches::Auto, last_vertex: LastVertex::default() }
     }
 }
 
@@ -265,6 +298,12 @@ impl PathTracer {
         let u_rr = sampler.next_1d();
         let u2 = sampler.next_2d();
 
+        // at the last vertex the BSDF sample would only look for an emitter to hit: where light
+        // sampling alone is enough (module docs), it takes the whole light and the path ends here
+        let light_only = self.last_vertex == LastVertex::LightOnlyWhereBounded
+            && matches!(self.max_depth, Some(max) if st.depth + 2 >= max)
+            && scene.light_sampling_suffices(bsdf, si.p);
+
         // next-event estimation
         if bsdf.has_smooth_lobe() {
             if let Some(es) = scene.sample_emitter_direction(si.p, u_light) {
@@ -275,12 +314,16 @@ impl PathTracer {
                     if scene.unoccluded(si.p, si.n, &es) {
                         let w = match es.support {
                             Support::Delta => 1.0,
+                            Support::Extended if light_only => 1.0,
                             Support::Extended => power_heuristic(es.pdf, bsdf.pdf(&sp, wo, wi)),
                         };
                         *result += st.beta * f * es.weight * w;
                     }
                 }
             }
+        }
+        if light_only {
+            return None;
         }
 
         // continue the path by sampling the BSDF

@@ -33,6 +33,16 @@ impl RectangleFrame {
         let (x, y) = (ex / x_len, ey / y_len);
         RectangleFrame { corner, x, y, z: x.cross(y), x_len, y_len }
     }
+
+    /// Squared distance from `p` to the nearest point of the rectangle, m².
+    pub fn distance_squared(&self, p: Vec3) -> f32 {
+        let d = p - self.corner;
+        let (u, v) = (d.dot(self.x), d.dot(self.y));
+        let du = u - u.clamp(0.0, self.x_len);
+        let dv = v - v.clamp(0.0, self.y_len);
+        let h = d.dot(self.z);
+        du * du + dv * dv + h * h
+    }
 }
 
 /// A rectangle as seen from a reference point, ready to be sampled.

@@ -223,6 +223,20 @@ impl Shape {
         }
     }
 
+    /// Whether [`Shape::sample_direction`] from `reference` gives every sample a bounded weight
+    /// (emitted radiance × cosine at `reference` / density, at most a fixed multiple of the
+    /// radiance) for a Lambertian receiver there: then light sampling alone, without the BSDF
+    /// sample that multiple importance sampling adds, has no fireflies. True for spheres seen
+    /// from outside and for rectangles no nearer than √area; false for the shapes sampled by
+    /// area everywhere (meshes, disks, cylinders), where 1/d² is unbounded near the surface.
+    pub fn light_sampling_bounded(&self, reference: Vec3) -> bool {
+        match self {
+            Shape::Sphere(s) => s.light_sampling_bounded(reference),
+            Shape::Rectangle(s) => s.light_sampling_bounded(reference),
+            Shape::Mesh(_) | Shape::Disk(_) | Shape::Cylinder(_) => false,
+        }
+    }
+
     /// The density per solid angle (1/sr) that [`Shape::sample_direction`] gives for the surface
     /// point `q`, seen from `reference`.
     pub fn pdf_direction(&self, reference: Vec3, q: &SurfacePoint) -> f32 {

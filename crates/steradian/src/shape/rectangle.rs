@@ -121,6 +121,14 @@ impl Rectangle {
         }
     }
 
+    /// Whether every direction sample from `reference` has a bounded weight for a Lambertian
+    /// receiver there (see [`Shape::light_sampling_bounded`]). Area sampling weighs a sample
+    /// at distance d by A·cos θ_light/d², so it is bounded (by 1) where the whole rectangle lies
+    /// at least √A away; nearer points, and parallelograms, say no (the caller then keeps MIS).
+    pub fn light_sampling_bounded(&self, reference: Vec3) -> bool {
+        self.frame.as_ref().is_some_and(|f| self.area <= f.distance_squared(reference))
+    }
+
     /// The rectangle as seen from `reference`, when solid-angle sampling applies there.
     fn spherical(&self, reference: Vec3) -> Option<SphericalRectangle> {
         let frame = self.frame.as_ref()?;

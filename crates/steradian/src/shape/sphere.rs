@@ -174,6 +174,14 @@ impl Sphere {
         Some((cos_max, one_minus, dc2.sqrt()))
     }
 
+    /// Whether every direction sample from `reference` has a bounded weight for a Lambertian
+    /// receiver there (see [`Shape::light_sampling_bounded`]): from outside, the cone is sampled
+    /// uniformly, and a sample weighs at most its solid angle 2π(1 − cos θmax); from inside,
+    /// area sampling's 1/d² is not bounded.
+    pub fn light_sampling_bounded(&self, reference: Vec3) -> bool {
+        self.cone(reference).is_some()
+    }
+
     pub fn sample_direction(&self, reference: Vec3, u: Vec2, uv: super::UvRequest) -> Option<DirectionSample> {
         let Some((cos_max, one_minus, dc)) = self.cone(reference) else {
             return super::direction_from_position(reference, &self.sample_position(u), 0);

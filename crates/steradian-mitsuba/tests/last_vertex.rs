@@ -8,9 +8,10 @@
 use std::path::Path;
 
 use glam::Vec3;
-use steradian::integrator::{render, Integrator, LastVertex, RenderOptions};
-use steradian::sampling::SamplerKind;
+use steradian::integrator::{Integrator, LastVertex};
 use steradian::scene::Scene;
+
+mod common;
 
 fn scene_xml(max_depth: u32, lights: &str) -> String {
     format!(
@@ -47,16 +48,11 @@ fn load(xml: &str) -> Scene {
     steradian_mitsuba::load_string(xml, Path::new("last_vertex.xml"), Path::new("."), &[]).unwrap_or_else(|e| panic!("{e}"))
 }
 
-/// Mean of the red channel over the film and its standard error, i.i.d. samples.
+/// The image mean (red channel) and its standard error with the given last-vertex estimator.
 fn mean_and_error(mut s: Scene, last_vertex: LastVertex, seed: u64) -> (f64, f64) {
     let Integrator::Path(p) = &mut s.integrator else { panic!("a path integrator") };
     p.last_vertex = last_vertex;
-    let out = render(&s, &RenderOptions { spp: Some(256), seed: Some(seed), sampler: Some(SamplerKind::Independent), ..Default::default() }).unwrap();
-    let (img, err) = (out.film.develop(), out.film.develop_stderr());
-    let n = (img.width * img.height) as f64;
-    let mean = img.data.iter().step_by(3).map(|&v| v as f64).sum::<f64>() / n;
-    let se = err.data.iter().step_by(3).map(|&e| (e as f64).powi(2)).sum::<f64>().sqrt() / n;
-    (mean, se)
+    common::scene_mean_and_error(&s, seed)
 }
 
 #[test]

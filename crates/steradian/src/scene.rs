@@ -56,10 +56,11 @@ enum LastVertexLights {
     /// Only delta lights (or none): no ray can hit an emitter, so a BSDF sample taken only to
     /// find emitters never finds one.
     Unreachable,
-    /// At most [`LAST_VERTEX_MAX_CHECKS`] emitters, all spheres, rectangles or delta lights:
-    /// whether light sampling alone is bounded is checked at each last vertex.
+    /// At most [`LAST_VERTEX_MAX_CHECKS`] emitters: whether light sampling alone is bounded is
+    /// checked at each last vertex ([`Emitter::light_sampling_bounded`], which also knows the
+    /// kinds of light that never are).
     CheckEach,
-    /// Other emitters (meshes, disks, cylinders, environments, or many lights): always MIS.
+    /// More emitters: always MIS.
     Mis,
 }
 
@@ -68,16 +69,10 @@ enum LastVertexLights {
 const LAST_VERTEX_MAX_CHECKS: usize = 16;
 
 impl LastVertexLights {
-    fn of(emitters: &[Emitter], shapes: &[Shape]) -> LastVertexLights {
+    fn of(emitters: &[Emitter]) -> LastVertexLights {
         if emitters.iter().all(|e| e.support() == Support::Delta) {
-            return LastVertexLights::Unreachable;
-        }
-        let checkable = |e: &Emitter| match e {
-            Emitter::Area(a) => matches!(shapes[a.shape as usize], Shape::Sphere(_) | Shape::Rectangle(_)),
-            Emitter::Constant(_) => false,
-            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => true,
-        };
-        if emitters.len() <= LAST_VERTEX_MAX_CHECKS && emitters.iter().all(checkable) {
+            LastVertexLights::Unreachable
+        } else if emitters.len() <= LAST_VERTEX_MAX_CHECKS {
             LastVertexLights::CheckEach
         } else {
             LastVertexLights::Mis
@@ -108,7 +103,7 @@ impl Scene {
         let accel = Accel::build(&shapes);
         let (light_pmf, light_cdf) = integrator.light_selection().distribution(&desc.emitters, &shapes, accel.bounds());
         Ok(Scene {
-            last_vertex: LastVertexLights::of(&desc.emitters, &shapes),
+            last_vertex: LastVertexLights::of(&desc.emitters),
             light_pmf,
             light_cdf,
             shapes,

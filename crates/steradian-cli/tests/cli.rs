@@ -209,7 +209,10 @@ fn ctrl_c_keeps_the_finished_passes() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(Duration::from_millis(1500));
+    // Idle, the pilot and the first pass take about 0.5 s; under the load of a full test run
+    // on 2 cores 1.5 s once was not enough (0 passes finished). 4 s leaves room, and the whole
+    // render would take minutes.
+    std::thread::sleep(Duration::from_millis(4000));
     let status = Command::new("kill").args(["-INT", &child.id().to_string()]).status().unwrap();
     assert!(status.success());
     let start = Instant::now();

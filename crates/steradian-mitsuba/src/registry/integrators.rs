@@ -1,7 +1,7 @@
 //! Integrator plugins: `path`, `direct`.
 
 use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
-use steradian::integrator::{parse_branches, parse_max_depth, Branches, EmitterVisibility, LightSelection};
+use steradian::integrator::{parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LightSelection, DEFAULT_RR_SCALE};
 
 use super::{at_property, unknown_type};
 use crate::error::LoadError;
@@ -44,13 +44,18 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
                 let pos = p.position("rr_depth").unwrap_or(&node.pos);
                 return Err(LoadError::at(pos, format!("{}: 'rr_depth' must be at least 1", node.desc())));
             }
+            // steradian's own: the roulette's κ (integrator/path.rs)
+            let rr_scale = match p.get_float("rr_scale")? {
+                None => DEFAULT_RR_SCALE,
+                Some(v) => parse_rr_scale(v).map_err(at_property(node, &["rr_scale"]))?,
+            };
             // steradian's own: paths continued from each first hit (integrator/path.rs); unset,
             // a pilot chooses (integrator/branching.rs)
             let branches = match p.get_int("branches")? {
                 None => Branches::Auto,
                 Some(v) => parse_branches(v).map_err(at_property(node, &["branches"]))?,
             };
-            Integrator::Path(PathTracer { max_depth, rr_depth, emitters: visibility(p.get_bool("hide_emitters")?), light_selection: light_selection(node)?, branches, ..PathTracer::default() })
+            Integrator::Path(PathTracer { max_depth, rr_depth, rr_scale, emitters: visibility(p.get_bool("hide_emitters")?), light_selection: light_selection(node)?, branches, ..PathTracer::default() })
         }
         "direct" => {
             let shading = count(node, "shading_samples", 1)?;

@@ -49,7 +49,7 @@ fn roulette_keeps_the_integrating_sphere_radiance() {
 fn rr_scale_must_be_positive() {
     for bad in ["0", "-1", "nan"] {
         let xml = scene(None).replace(r#"<integer name="branches" value="2"/>"#, &format!(r#"<float name="rr_scale" value="{bad}"/>"#));
-        let e = steradian_mitsuba::load_string(&xml, std::path::Path::new("roulette.xml"), std::path::Path::new("."), &[]).err().expect("an error");
+        let e = steradian_mitsuba::load_string(&xml, std::path::Path::new("roulette.xml"), std::path::Path::new("."), &[]).expect_err("an error");
         assert!(e.to_string().contains("rr_scale must be a positive number"), "{e}");
         assert_eq!(e.pos.as_ref().map(|p| (p.line, p.col)), Some((3, 13)), "{e}");
     }

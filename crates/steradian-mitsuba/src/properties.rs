@@ -154,7 +154,7 @@ impl Properties {
     }
 
     /// Errors on the first property that was never read:
-    /// "unreferenced property 'foo' in <bsdf type="diffuse">", at that property.
+    /// `unreferenced property 'foo' in <bsdf type="diffuse">`, at that property.
     pub fn check_all_used(&self, plugin_desc: &str) -> Result<(), LoadError> {
         match self.entries.iter().find(|e| !e.used.load(Ordering::Relaxed)) {
             Some(e) => Err(LoadError::at(&e.pos, format!("unreferenced property '{}' in {plugin_desc}", e.name))),

@@ -105,7 +105,7 @@ pub struct Pilot {
     pub spp: u32,
     pub replicates: u32,
     /// Relative variance of one camera sample's value, V(N), and rays' worth of work per
-    /// camera sample, C(N), for each of [`CANDIDATES`].
+    /// camera sample, C(N), for each of `CANDIDATES`.
     pub variance: [f64; CANDIDATES.len()],
     pub cost: [f64; CANDIDATES.len()],
     /// Least-squares fits C(N) = C₁ + N·C₂ ...

@@ -122,7 +122,7 @@ impl Rectangle {
     }
 
     /// Whether every direction sample from `reference` has a bounded weight for a Lambertian
-    /// receiver there (see [`Shape::light_sampling_bounded`]). Area sampling weighs a sample
+    /// receiver there (see [`super::Shape::light_sampling_bounded`]). Area sampling weighs a sample
     /// at distance d by A·cos θ_light/d², so it is bounded (by 1) where the whole rectangle lies
     /// at least √A away; nearer points, and parallelograms, say no (the caller then keeps MIS).
     pub fn light_sampling_bounded(&self, reference: Vec3) -> bool {

@@ -175,7 +175,7 @@ impl Sphere {
     }
 
     /// Whether every direction sample from `reference` has a bounded weight for a Lambertian
-    /// receiver there (see [`Shape::light_sampling_bounded`]): from outside, the cone is sampled
+    /// receiver there (see [`super::Shape::light_sampling_bounded`]): from outside, the cone is sampled
     /// uniformly, and a sample weighs at most its solid angle 2π(1 − cos θmax); from inside,
     /// area sampling's 1/d² is not bounded.
     pub fn light_sampling_bounded(&self, reference: Vec3) -> bool {

@@ -88,10 +88,9 @@ impl Sphere {
 
     /// Both roots of |o + t·d − c|² = r² for the unit direction d, in increasing order.
     #[inline]
-    fn roots(&self, o: Vec3, d: Vec3) -> Option<(f64, f64)> {
-        let oc = o.as_dvec3() - self.center.as_dvec3();
-        let d = d.as_dvec3();
-        let r = self.radius as f64;
+    fn roots(&self, o: Vec3, d: Vec3) -> Option<(f32, f32)> {
+        let oc = o - self.center;
+        let r = self.radius;
         let b = oc.dot(d);
         let c = oc.dot(oc) - r * r;
         // discriminant written as r² − |oc − b·d|² (exact-ish for far rays)
@@ -111,7 +110,7 @@ impl Sphere {
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Vec2)> {
         let (t0, t1) = self.roots(ray.o, ray.d)?;
-        let t_max = ray.t_max as f64;
+        let t_max = ray.t_max;
         let t = if t0 > 0.0 && t0 < t_max {
             t0
         } else if t1 > 0.0 && t1 < t_max {
@@ -119,10 +118,6 @@ impl Sphere {
         } else {
             return None;
         };
-        let t = t as f32;
-        if !(t > 0.0 && t < ray.t_max) {
-            return None;
-        }
         // uv waits for `interaction`: most candidate hits (and every shadow ray) never need it
         Some((t, Vec2::ZERO))
     }

@@ -168,6 +168,41 @@ fn sphere_far_and_grazing_rays_are_accurate() {
     assert!(hit(&s, &Ray::infinite(Vec3::ZERO, d)).is_none());
 }
 
+/// The intersection runs in single precision: rays leaving a sphere's surface (from the
+/// offset origin every path vertex uses) must not find the surface again, and rays going
+/// in must find the far side where double precision puts it, for unit and large spheres far
+/// from and near the origin (random points and directions, fixed seed).
+#[test]
+fn sphere_rays_from_the_surface_in_single_precision() {
+    let mut rng = crate::sampling::Pcg32::new(11, 5);
+    for (c, r) in [(Vec3::new(0.0, 0.0, 1000.0), 5.0f32), (Vec3::new(0.3, -0.2, 0.1), 1.0), (Vec3::new(-50.0, 20.0, 400.0), 3.0), (Vec3::new(0.0, -1000.0, 0.0), 999.0)] {
+        let s = Shape::Sphere(Sphere::new(c, r, &Transform::IDENTITY, false));
+        for _ in 0..2000 {
+            let n = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let p = c + n * r;
+            let cos = d.dot(n);
+            if cos.abs() < 0.05 {
+                continue; // grazing: no chord to speak of
+            }
+            let ray = Ray::infinite(offset_ray_origin(p, n, d), d);
+            match hit(&s, &ray) {
+                Some(si) if cos > 0.0 => panic!("r = {r}: self-hit at t = {} leaving the surface", si.t),
+                None if cos < 0.0 => panic!("r = {r}: no far side going in"),
+                Some(si) => {
+                    // the far root from the ray's actual origin, in double precision
+                    let (o, d, c) = (ray.o.as_dvec3(), ray.d.as_dvec3(), c.as_dvec3());
+                    let oc = o - c;
+                    let b = oc.dot(d);
+                    let far = -b + (b * b - oc.dot(oc) + (r as f64).powi(2)).sqrt();
+                    assert!((si.t as f64 - far).abs() <= 1e-5 * (1.0 + far + c.abs().max_element()), "r = {r}: t {} vs {far}", si.t);
+                }
+                None => {}
+            }
+        }
+    }
+}
+
 #[test]
 fn sphere_sampling() {
     let (r, d) = (1.3f64, 3.0f64);

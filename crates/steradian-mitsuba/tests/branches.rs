@@ -8,14 +8,13 @@ use std::path::Path;
 use steradian::integrator::{render, Branches, Integrator, RenderOptions, DEFAULT_BRANCHES};
 
 mod common;
+use common::SENSOR;
 
 fn scene(branches: &str) -> String {
     format!(
         r#"<scene version="3.0.0">
         <integrator type="path"><integer name="max_depth" value="5"/>{branches}</integrator>
-        <sensor type="perspective"><float name="fov" value="60"/>
-            <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
-            <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="24"/><rfilter type="box"/></film></sensor>
+        {SENSOR}
         <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><bsdf type="diffuse"/></shape>
         <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate y="1" angle="80"/><translate x="-2"/></transform>
             <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.5, 0.2"/></bsdf></shape>

@@ -12,15 +12,14 @@ use steradian::integrator::{Integrator, LastVertex};
 use steradian::scene::Scene;
 
 mod common;
+use common::SENSOR;
 
 fn scene_xml(max_depth: u32, lights: &str) -> String {
     format!(
         r#"<scene version="3.0.0">
         <integrator type="path"><integer name="max_depth" value="{max_depth}"/><integer name="branches" value="2"/>
             <boolean name="hide_emitters" value="true"/></integrator>
-        <sensor type="perspective"><float name="fov" value="60"/>
-            <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
-            <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="24"/><rfilter type="box"/></film></sensor>
+        {SENSOR}
         <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><bsdf type="diffuse"/></shape>
         <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate y="1" angle="80"/><translate x="-2"/></transform>
             <bsdf type="roughconductor"><float name="alpha" value="0.2"/></bsdf></shape>

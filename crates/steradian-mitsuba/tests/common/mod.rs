@@ -6,6 +6,14 @@ use steradian::integrator::{render, RenderOptions};
 use steradian::sampling::SamplerKind;
 use steradian::scene::Scene;
 
+/// The camera of the small integration-test scenes (`branches.rs`, `last_vertex.rs`): 60° from
+/// (0, 0, 4) towards the origin, a 24 × 24 film with a box filter, so each pixel's error comes
+/// from its own samples.
+#[allow(dead_code)] // not every test scene uses it
+pub const SENSOR: &str = r#"<sensor type="perspective"><float name="fov" value="60"/>
+            <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="24"/><rfilter type="box"/></film></sensor>"#;
+
 /// The red channel's image mean of scene `xml` (named `file` in errors) at 256 i.i.d. samples
 /// per pixel, and its standard error (see [`scene_mean_and_error`]).
 #[allow(dead_code)] // `last_vertex.rs` loads its scenes itself

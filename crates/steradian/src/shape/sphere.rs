@@ -15,8 +15,8 @@
 //! determinant (or a negative `radius`) flips the normals, as in Mitsuba. Intersections are
 //! solved in single precision with the numerically stable quadratic (discriminant as
 //! r² − |oc − b·d|², near root as c/q; both roots, so rays from inside hit the far side); the
-//! offset of rays leaving a surface, 10⁻⁴ × (1 + |p|), is far above its rounding. uv = (φ/2π, θ/π) of the hit in the local frame of
-//! `to_world · T(center) · S(radius)`. Direction sampling from outside samples the cone of
+//! offset of rays leaving a surface, 10⁻⁴ × (1 + |p|), is far above its rounding.
+//! uv = (φ/2π, θ/π) of the hit in the local frame of `to_world · T(center) · S(radius)`. Direction sampling from outside samples the cone of
 //! directions subtending the sphere uniformly (pdf 1/(2π(1 − cos θmax)), 1/sr); from inside
 //! it samples the area uniformly and converts to solid angle.
 
@@ -111,10 +111,9 @@ impl Sphere {
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<(f32, Vec2)> {
         let (t0, t1) = self.roots(ray.o, ray.d)?;
-        let t_max = ray.t_max;
-        let t = if t0 > 0.0 && t0 < t_max {
+        let t = if t0 > 0.0 && t0 < ray.t_max {
             t0
-        } else if t1 > 0.0 && t1 < t_max {
+        } else if t1 > 0.0 && t1 < ray.t_max {
             t1
         } else {
             return None;

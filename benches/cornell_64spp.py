@@ -32,10 +32,11 @@ def main():
     ap.add_argument("--threads", type=int, default=0, help="worker threads for both renderers (0 = all cores)")
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--json", metavar="FILE", help="also write the full results as JSON to FILE")
-    ap.add_argument("--no-build", action="store_true", help="use target/release/steradian as it is")
+    ap.add_argument("--no-pgo", action="store_true", help="time the plain release build, not the profile-guided one")
+    ap.add_argument("--no-build", action="store_true", help="use the binary already built")
     a = ap.parse_args()
     variants = ["scalar_rgb", "llvm_ad_rgb"]
-    res = rvm.run(["cornell"], 64, variants, a.repeat, a.threads, a.seed, build=not a.no_build)
+    res = rvm.run(["cornell"], 64, variants, a.repeat, a.threads, a.seed, build=not a.no_build, pgo=not a.no_pgo)
     if not res["scenes"]:
         sys.exit("cornell was not rendered: " + "; ".join(s["reason"] for s in res["skipped"]))
     e = res["scenes"][0]

@@ -3,11 +3,15 @@
 
     python3 benches/render_vs_mitsuba.py [--scenes cornell,furnace,pointlight] [--spp 64]
         [--variant llvm_ad_rgb[,scalar_rgb]] [--repeat 3] [--threads N] [--json FILE|-]
+        [--no-pgo] [--no-build]
 
 For every scene, in one process and alternating (steradian, then each Mitsuba variant, then
 steradian again, ...) so that all see the same machine:
 
-  steradian  `steradian render SCENE --spp N --seed S -o OUT.exr --quiet`, timed as a whole
+  steradian  the profile-guided release build (scripts/build-pgo.sh, trained on scenes outside
+             this benchmark; --no-pgo: plain `cargo build --release`; the images are the same
+             bit for bit), run as
+             `steradian render SCENE --spp N --seed S -o OUT.exr --quiet`, timed as a whole
              process (wall clock of the subprocess: start-up, XML load, BVH build, render,
              EXR + PNG writing). The render time steradian prints itself is reported too.
   Mitsuba 3  the pip package, in this Python process. The scene is loaded and rendered once
@@ -133,6 +137,23 @@ def metrics(np, a, b):
 
 # ----------------------------------------------------------------------------- steradian
 
+PGO_EXE = os.path.join(REPO, "target", "pgo", "release", "steradian")
+RELEASE_EXE = os.path.join(REPO, "target", "release", "steradian")
+
+
+def build_steradian_pgo():
+    """scripts/build-pgo.sh: the release build with profile-guided optimisation, trained on
+    scenes outside this benchmark; returns the path of the binary."""
+    print("building: bash scripts/build-pgo.sh (profile-guided release build)", file=sys.stderr, flush=True)
+    p = subprocess.run(["bash", os.path.join(REPO, "scripts", "build-pgo.sh")], cwd=REPO, stdout=subprocess.PIPE, text=True)
+    if p.returncode != 0:
+        sys.exit("scripts/build-pgo.sh failed")
+    exe = p.stdout.strip().splitlines()[-1] if p.stdout.strip() else ""
+    if not os.path.exists(exe):
+        sys.exit("scripts/build-pgo.sh did not print the steradian executable")
+    return exe
+
+
 def build_steradian():
     """cargo build --release -p steradian-cli; returns the path of the binary."""
     cmd = ["cargo", "build", "--release", "-p", "steradian-cli", "--message-format=json-render-diagnostics"]
@@ -222,18 +243,23 @@ def fmt_t(x):
     return "-" if x is None else (f"{x:.3f}" if x < 10 else f"{x:.1f}")
 
 
-def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, log=sys.stderr):
-    """Runs the benchmark; returns a JSON-able dict (and prints progress to `log`)."""
+def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, log=sys.stderr, pgo=True):
+    """Runs the benchmark; returns a JSON-able dict (and prints progress to `log`).
+    `pgo`: time the profile-guided build (scripts/build-pgo.sh), else the plain release build;
+    `build`: build it first, else use the binary already there."""
     import numpy as np
     mi, dr = import_mitsuba(variants, threads)
-    exe = build_steradian() if build else os.path.join(REPO, "target", "release", "steradian")
+    if build:
+        exe = build_steradian_pgo() if pgo else build_steradian()
+    else:
+        exe = PGO_EXE if pgo else RELEASE_EXE
     workdir = keep or tempfile.mkdtemp(prefix="steradian_bench_")
     os.makedirs(workdir, exist_ok=True)
     result = dict(spp=spp, seed=seed, repeat=repeat, threads=threads or os.cpu_count(),
                   variants=variants, target_relmse=TARGET, cpu_count=os.cpu_count(),
                   loadavg_start=[round(x, 2) for x in os.getloadavg()], scenes=[], skipped=[],
                   libllvm=os.environ.get("DRJIT_LIBLLVM_PATH"), mitsuba_version=mi.__version__,
-                  steradian=exe)
+                  steradian=exe, steradian_build="profile-guided release" if pgo else "release")
     try:
         for name in scenes:
             sname, xml, ref = scene_paths(name)
@@ -312,6 +338,7 @@ def report(res, out=sys.stdout):
       f"{res['spp']} spp, seed {res['seed']}, median of {res['repeat']}, "
       f"{res['threads']} threads on {res['cpu_count']} cores")
     p(f"load average at start {res['loadavg_start']}, at end {res['loadavg_end']}")
+    p(f"steradian: {res.get('steradian_build', 'release')} build ({res['steradian']})")
     p("steradian time = whole process (load + render + write); Mitsuba time = warm mi.render() only")
     p(f"t@1e-3 = time x relMSE / 1e-3 (relMSE ~ 1/spp); speed-up = Mitsuba t@1e-3 / steradian t@1e-3")
     p("own s = the render time steradian prints itself (no start-up, load or writing)")
@@ -355,12 +382,17 @@ def main(argv=None):
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--json", metavar="FILE", help="also write the results as JSON to FILE ('-' = stdout only)")
     ap.add_argument("--keep", metavar="DIR", help="keep the rendered EXRs in DIR")
-    ap.add_argument("--no-build", action="store_true", help="use target/release/steradian as it is")
+    ap.add_argument("--no-pgo", action="store_true",
+                    help="time the plain release build (cargo build --release) instead of the "
+                         "profile-guided one (scripts/build-pgo.sh)")
+    ap.add_argument("--no-build", action="store_true",
+                    help="use the binary already built (target/pgo/release/steradian, or "
+                         "target/release/steradian with --no-pgo)")
     a = ap.parse_args(argv)
     if a.spp < 1 or a.repeat < 1 or a.threads < 0:
         ap.error("--spp and --repeat must be >= 1, --threads >= 0")
     res = run([s for s in a.scenes.split(",") if s], a.spp, [v for v in a.variant.split(",") if v],
-              a.repeat, a.threads, a.seed, a.keep, not a.no_build)
+              a.repeat, a.threads, a.seed, a.keep, not a.no_build, pgo=not a.no_pgo)
     if a.json == "-":
         print(json.dumps(res, indent=1))
     else:

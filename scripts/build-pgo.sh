@@ -8,7 +8,7 @@
 #    call runs;
 # 2. runs it on a training workload: the reference scenes that the speed benchmark does not
 #    use (plastics, textures, furnace, pointlight), scenes/phong.xml, scenes/merl.xml and
-#    benches/pgo/glass.xml (glass, spherical and spot lights);
+#    benches/pgo/training.xml (glass, GGX conductors, spherical and spot lights);
 # 3. merges the counts with the toolchain's own llvm-profdata (rustup component
 #    `llvm-tools`, installed here if missing: the profile format follows rustc's LLVM) and
 #    rebuilds with them (target/pgo).
@@ -47,7 +47,7 @@ out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 ref=crates/steradian-mitsuba/tests/reference
 for scene in $ref/plastics.xml $ref/textures.xml $ref/furnace.xml $ref/pointlight.xml \
-             scenes/phong.xml scenes/merl.xml benches/pgo/glass.xml; do
+             scenes/phong.xml scenes/merl.xml benches/pgo/training.xml; do
     "$bin" render "$scene" --spp 8 -o "$out/train.exr" --quiet >&2
 done
 

@@ -254,3 +254,30 @@ fn spectra_and_broadcasts() {
     assert_eq!(s.children[2].node.props.get_spectrum("k").unwrap().map(Vec3::from), Some(Vec3::splat(3.0)));
     assert_eq!(s.children[3].node.props.get_spectrum("reflectance").unwrap().map(Vec3::from), Some(Vec3::splat(0.5)));
 }
+
+/// The profile-guided build's training scene (`benches/pgo/training.xml`, rendered by
+/// `scripts/build-pgo.sh`) loads, holds what the script says it adds to the training set
+/// (smooth, rough and thin glass, smooth and GGX rough conductors, a spherical area light, a
+/// spot light), and renders finite, non-black light. Without this test a loader change that
+/// rejected the scene would only show when the speed benchmark builds.
+#[test]
+fn pgo_training_scene_renders() {
+    use steradian::emitter::Emitter;
+    use steradian::integrator::{render, RenderOptions};
+    use steradian::shape::Shape;
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../benches/pgo/training.xml");
+    let defines = [("res".to_string(), "32".to_string())];
+    let scene = steradian_mitsuba::load_file(&path, &defines).unwrap_or_else(|e| panic!("{e}"));
+    let bsdfs: Vec<String> = scene.bsdfs.iter().map(|b| format!("{b:?}")).collect();
+    for kind in ["Dielectric", "RoughDielectric", "ThinDielectric", "Conductor", "RoughConductor"] {
+        assert!(bsdfs.iter().any(|b| b.starts_with(kind)), "no {kind} BSDF in {bsdfs:?}");
+    }
+    assert!(bsdfs.iter().any(|b| b.starts_with("RoughConductor") && b.contains("Ggx")), "no GGX rough conductor");
+    let sphere_light = scene.emitters.iter().any(|e| matches!(e, Emitter::Area(a) if matches!(scene.shapes[a.shape as usize], Shape::Sphere(_))));
+    assert!(sphere_light, "no spherical area light");
+    assert!(scene.emitters.iter().any(|e| matches!(e, Emitter::Spot(_))), "no spot light");
+    let out = render(&scene, &RenderOptions { spp: Some(2), seed: Some(1), ..Default::default() }).unwrap();
+    assert_eq!(out.dropped_samples, 0);
+    let m = out.film.develop().channel_means();
+    assert!(m.iter().all(|x| x.is_finite() && *x > 1e-3), "channel means {m:?}");
+}

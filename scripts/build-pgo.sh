@@ -13,6 +13,9 @@
 #    `llvm-tools`, installed here if missing: the profile format follows rustc's LLVM) and
 #    rebuilds with them (target/pgo).
 #
+# The merged profile stays in target/pgo-profiles/merged.profdata; the Python package can use
+# it too: RUSTFLAGS="-C target-cpu=native -C profile-use=$PWD/target/pgo-profiles/merged.profdata" pip install .
+#
 # The benchmark scenes (cornell, materials, veach) are deliberately not in the training set.
 # The optimisation changes code layout, inlining and branch order, never floating-point
 # operations: the images are bit for bit those of `cargo build --release`. Measured gain:

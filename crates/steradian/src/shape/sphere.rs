@@ -16,9 +16,10 @@
 //! solved in single precision with the numerically stable quadratic (discriminant as
 //! r² − |oc − b·d|², near root as c/q; both roots, so rays from inside hit the far side); the
 //! offset of rays leaving a surface, 10⁻⁴ × (1 + |p|), is far above its rounding.
-//! uv = (φ/2π, θ/π) of the hit in the local frame of `to_world · T(center) · S(radius)`. Direction sampling from outside samples the cone of
-//! directions subtending the sphere uniformly (pdf 1/(2π(1 − cos θmax)), 1/sr); from inside
-//! it samples the area uniformly and converts to solid angle.
+//! uv = (φ/2π, θ/π) of the hit in the local frame of `to_world · T(center) · S(radius)`.
+//! Direction sampling from outside samples the cone of directions subtending the sphere
+//! uniformly (pdf 1/(2π(1 − cos θmax)), 1/sr); from inside it samples the area uniformly and
+//! converts to solid angle.
 
 use std::f32::consts::PI;
 

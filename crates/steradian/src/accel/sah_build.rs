@@ -23,6 +23,9 @@ pub(super) const MAX_LEAF: usize = 8;
 pub(super) const TRI_BLOCK: usize = 4;
 /// Cost of one node visit relative to one triangle-packet test.
 const TRAVERSAL_COST: f32 = 1.0;
+/// A leaf's refinement that adds triangle packets is kept only where it brings the leaf's
+/// expected tests below this fraction of the whole leaf's (see `refined_leaf`).
+const REFINE_GROWTH_GAIN: f32 = 0.75;
 /// Beyond this depth nodes are split at the object median: the depth stays bounded (and with it
 /// the traversal stack) whatever the input.
 pub(super) const SAH_MAX_DEPTH: usize = 40;
@@ -43,10 +46,26 @@ pub(super) struct BuildPrim {
 }
 
 /// A node of the binary tree. Leaves cover `prims[start..start + count]`, all of one kind.
+///
+/// A leaf of several primitives also carries `refined`: the SAH's best split of it, itself made
+/// of refined leaves. The SAH prices a split at one more node visit, but the collapse to
+/// [`WIDTH`](super::wide::WIDTH)-wide nodes tests all children of a wide node at once, so where
+/// a wide node has a child slot to spare the split costs no visit at all and lets the box test
+/// cull part of the leaf. The collapse uses refinements only there (`wide.rs`).
 #[derive(Debug)]
 pub(super) enum BinaryNode {
-    Leaf { bounds: Aabb, start: usize, count: usize, triangles: bool },
+    Leaf { bounds: Aabb, start: usize, count: usize, triangles: bool, refined: Option<Box<[BinaryNode; 2]>> },
     Inner { bounds: Aabb, children: Box<[BinaryNode; 2]> },
+}
+
+/// When [`sah_split`] may answer that a leaf is cheaper.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum SplitPolicy {
+    /// The SAH's choice: `None` where a leaf costs less than the best split.
+    LeafIfCheaper,
+    /// The best split whatever it costs (`None` only where no bin boundary separates the
+    /// centroids): the refinement of a leaf.
+    Always,
 }
 
 impl BinaryNode {
@@ -127,13 +146,12 @@ fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNod
     }
     let count = prims.len();
     let pure = triangles == count || triangles == 0;
-    let leaf = || BinaryNode::Leaf { bounds, start: offset, count, triangles: triangles == count };
     if count == 1 {
-        return leaf();
+        return BinaryNode::Leaf { bounds, start: offset, count, triangles: triangles == count, refined: None };
     }
-    let mid = match (depth < SAH_MAX_DEPTH).then(|| sah_split(prims, &bounds, &cbounds, count - triangles)).flatten() {
+    let mid = match (depth < SAH_MAX_DEPTH).then(|| sah_split(prims, &bounds, &cbounds, count - triangles, SplitPolicy::LeafIfCheaper)).flatten() {
         Some(mid) => mid,
-        None if count <= MAX_LEAF && pure => return leaf(),
+        None if count <= MAX_LEAF && pure => return refined_leaf(prims, offset),
         None if count <= MAX_LEAF => {
             // the SAH wants a leaf, but leaves hold one kind: triangles first, then the rest
             let mut i = 0;
@@ -163,9 +181,43 @@ fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNod
     BinaryNode::Inner { bounds, children: Box::new([l, r]) }
 }
 
+/// A leaf over `prims` (all of one kind, at most [`MAX_LEAF`]) with its refinement (see
+/// [`BinaryNode`]), reordering `prims` within their range as the refinement splits them.
+fn refined_leaf(prims: &mut [BuildPrim], offset: usize) -> BinaryNode {
+    let mut bounds = Aabb::EMPTY;
+    let mut cbounds = Aabb::EMPTY;
+    for p in prims.iter() {
+        bounds = bounds.union(&p.bounds);
+        cbounds.grow(p.centroid);
+    }
+    let count = prims.len();
+    let triangles = prims[0].is_triangle;
+    let other = if triangles { 0 } else { count };
+    // Only leaves that hold several shapes are refined: those are separate objects the SAH put
+    // together (cornell's walls, materials' spheres). The triangles of one mesh in a leaf are a
+    // compact patch; refining those too made sphere1m's BVH build 1.3–1.5× longer and its
+    // shadow rays 0.67–0.72 of Embree's speed instead of 0.99 (benches/embree, 2 threads).
+    //
+    // A refinement is kept where it lowers the expected number of tests (surface area ×
+    // packets or analytic primitives; the node visit is free). One that needs more triangle
+    // packets than the leaf also costs memory, so it must cut the tests to REFINE_GROWTH_GAIN
+    // of the leaf's: a wall and a light pass; overlapping halves do not.
+    let cost = |b: &Aabb, n: usize| b.surface_area() * leaf_cost(n, triangles);
+    let several_shapes = prims.iter().any(|p| p.shape != prims[0].shape);
+    let refined = (count > 1 && several_shapes).then(|| sah_split(prims, &bounds, &cbounds, other, SplitPolicy::Always)).flatten().and_then(|mid| {
+        let (left, right) = prims.split_at_mut(mid);
+        let children = Box::new([refined_leaf(left, offset), refined_leaf(right, offset + mid)]);
+        let split_cost = cost(children[0].bounds(), mid) + cost(children[1].bounds(), count - mid);
+        let grows = leaf_cost(mid, triangles) + leaf_cost(count - mid, triangles) > leaf_cost(count, triangles);
+        let gain = if grows && triangles { REFINE_GROWTH_GAIN } else { 1.0 };
+        (split_cost < gain * cost(&bounds, count)).then_some(children)
+    });
+    BinaryNode::Leaf { bounds, start: offset, count, triangles, refined }
+}
+
 /// Binned SAH: partitions `items` and returns the size of the left part, or `None` when a leaf
-/// is cheaper (or no bin boundary separates the centroids).
-fn sah_split(items: &mut [BuildPrim], bounds: &Aabb, cbounds: &Aabb, other: usize) -> Option<usize> {
+/// is cheaper under `policy` (or no bin boundary separates the centroids).
+fn sah_split(items: &mut [BuildPrim], bounds: &Aabb, cbounds: &Aabb, other: usize, policy: SplitPolicy) -> Option<usize> {
     let count = items.len();
     let extent = cbounds.extent();
     let scale = Vec3::from_array(std::array::from_fn(|a| if is_positive(extent[a]) { BINS as f32 / extent[a] } else { 0.0 }));
@@ -213,7 +265,7 @@ fn sah_split(items: &mut [BuildPrim], bounds: &Aabb, cbounds: &Aabb, other: usiz
     let area = bounds.surface_area();
     let split_cost = if area > 0.0 { TRAVERSAL_COST + cost / area } else { TRAVERSAL_COST };
     let pure = other == 0 || other == count;
-    if count <= MAX_LEAF && pure && split_cost >= leaf_cost(count, other == 0) {
+    if policy == SplitPolicy::LeafIfCheaper && count <= MAX_LEAF && pure && split_cost >= leaf_cost(count, other == 0) {
         return None;
     }
     let (min, s) = (cbounds.min[axis], scale[axis]);

@@ -306,6 +306,19 @@ impl Collapse<'_> {
                     kids[i] = &children[0];
                     kids.push(&children[1]);
                 }
+                // slots still free: split leaves, the largest first, as their refinements say
+                while kids.len() < WIDTH {
+                    let widest = kids
+                        .iter()
+                        .enumerate()
+                        .filter(|(_, k)| matches!(k, BinaryNode::Leaf { refined: Some(_), .. }))
+                        .max_by(|a, b| a.1.bounds().surface_area().total_cmp(&b.1.bounds().surface_area()))
+                        .map(|(i, _)| i);
+                    let Some(i) = widest else { break };
+                    let BinaryNode::Leaf { refined: Some(children), .. } = kids[i] else { unreachable!() };
+                    kids[i] = &children[0];
+                    kids.push(&children[1]);
+                }
                 let idx = self.accel.nodes.len();
                 assert!(idx < ANALYTIC as usize, "scene too large for the BVH: more than 2^30 nodes");
                 self.accel.nodes.push(Node8::EMPTY);

@@ -74,6 +74,22 @@ impl BinaryNode {
             BinaryNode::Leaf { bounds, .. } | BinaryNode::Inner { bounds, .. } => bounds,
         }
     }
+
+    /// An inner node's two children.
+    pub fn children(&self) -> Option<&[BinaryNode; 2]> {
+        match self {
+            BinaryNode::Inner { children, .. } => Some(children),
+            BinaryNode::Leaf { .. } => None,
+        }
+    }
+
+    /// A leaf's refinement.
+    pub fn refinement(&self) -> Option<&[BinaryNode; 2]> {
+        match self {
+            BinaryNode::Leaf { refined, .. } => refined.as_deref(),
+            BinaryNode::Inner { .. } => None,
+        }
+    }
 }
 
 /// Builds the tree over `prims`, reordering them so that every leaf is a contiguous range.

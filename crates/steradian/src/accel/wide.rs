@@ -257,6 +257,9 @@ fn on_huge_pages<T: Copy>(v: Vec<T>) -> Vec<T> {
     out
 }
 
+/// What the collapse may put in place of a node: its two halves, if it has them of this kind.
+type Halves = fn(&BinaryNode) -> Option<&[BinaryNode; 2]>;
+
 struct Collapse<'a> {
     shapes: &'a [Shape],
     prims: &'a [BuildPrim],
@@ -294,30 +297,19 @@ impl Collapse<'_> {
             }
             BinaryNode::Inner { children, .. } => {
                 let mut kids: Vec<&BinaryNode> = vec![&children[0], &children[1]];
-                while kids.len() < WIDTH {
-                    let widest = kids
-                        .iter()
-                        .enumerate()
-                        .filter(|(_, k)| matches!(k, BinaryNode::Inner { .. }))
-                        .max_by(|a, b| a.1.bounds().surface_area().total_cmp(&b.1.bounds().surface_area()))
-                        .map(|(i, _)| i);
-                    let Some(i) = widest else { break };
-                    let BinaryNode::Inner { children, .. } = kids[i] else { unreachable!() };
-                    kids[i] = &children[0];
-                    kids.push(&children[1]);
-                }
-                // slots still free: split leaves, the largest first, as their refinements say
-                while kids.len() < WIDTH {
-                    let widest = kids
-                        .iter()
-                        .enumerate()
-                        .filter(|(_, k)| matches!(k, BinaryNode::Leaf { refined: Some(_), .. }))
-                        .max_by(|a, b| a.1.bounds().surface_area().total_cmp(&b.1.bounds().surface_area()))
-                        .map(|(i, _)| i);
-                    let Some(i) = widest else { break };
-                    let BinaryNode::Leaf { refined: Some(children), .. } = kids[i] else { unreachable!() };
-                    kids[i] = &children[0];
-                    kids.push(&children[1]);
+                // inner nodes first, the largest first; then, while slots are still free, the
+                // leaves' refinements (see `BinaryNode`)
+                for halves in [BinaryNode::children as Halves, BinaryNode::refinement] {
+                    while kids.len() < WIDTH {
+                        let widest = kids
+                            .iter()
+                            .enumerate()
+                            .filter_map(|(i, &k)| halves(k).map(|h| (i, k.bounds().surface_area(), h)))
+                            .max_by(|a, b| a.1.total_cmp(&b.1));
+                        let Some((i, _, [left, right])) = widest else { break };
+                        kids[i] = left;
+                        kids.push(right);
+                    }
                 }
                 let idx = self.accel.nodes.len();
                 assert!(idx < ANALYTIC as usize, "scene too large for the BVH: more than 2^30 nodes");

@@ -357,7 +357,7 @@ mod tests {
     fn defaults() {
         match one(r#"<bsdf type="conductor"/>"#) {
             Bsdf::Conductor(c) => assert_eq!(
-                (c.eta, c.k),
+                (c.ior.eta(), c.ior.k()),
                 (steradian::Spectrum::ZERO, steradian::Spectrum::ONE)
             ),
             b => panic!("{b:?}"),
@@ -369,7 +369,7 @@ mod tests {
                     (d.kind, d.alpha_u, d.alpha_v, d.sample_visible),
                     (steradian::bsdf::MicrofacetKind::Beckmann, 0.1, 0.1, true)
                 );
-                assert_eq!(c.k, steradian::Spectrum::ONE);
+                assert_eq!(c.ior.k(), steradian::Spectrum::ONE);
             }
             b => panic!("{b:?}"),
         }
@@ -412,14 +412,14 @@ mod tests {
             r#"<bsdf type="conductor"><string name="material" value="Au"/><rgb name="specular_reflectance" value="0.5"/></bsdf>"#,
         ) {
             Bsdf::Conductor(c) => {
-                assert!((c.eta.x - 0.143036).abs() < 1e-6 && (c.k.x - 3.983).abs() < 1e-6)
+                assert!((c.ior.eta().x - 0.143036).abs() < 1e-6 && (c.ior.k().x - 3.983).abs() < 1e-6)
             }
             b => panic!("{b:?}"),
         }
         match one(
             r#"<bsdf type="roughconductor"><rgb name="eta" value="0.2, 0.9, 1.1"/><rgb name="k" value="3.9, 2.4, 2.1"/></bsdf>"#,
         ) {
-            Bsdf::RoughConductor(c) => assert_eq!(c.eta.y, 0.9),
+            Bsdf::RoughConductor(c) => assert_eq!(c.ior.eta().y, 0.9),
             b => panic!("{b:?}"),
         }
     }

@@ -13,21 +13,21 @@
 
 use glam::{Vec2, Vec3};
 
-use super::fresnel::{fresnel_conductor, reflect};
+use super::fresnel::{reflect, ConductorIor};
 use super::{cos_theta, BsdfSample, Lobe, ShadingPoint};
 use crate::texture::Texture;
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct Conductor {
-    pub eta: Spectrum,
-    pub k: Spectrum,
+    /// η + i·k.
+    pub ior: ConductorIor,
     pub specular_reflectance: Texture,
 }
 
 impl Conductor {
     pub fn new(eta: Spectrum, k: Spectrum, specular_reflectance: Texture) -> Self {
-        Conductor { eta, k, specular_reflectance }
+        Conductor { ior: ConductorIor::new(eta, k), specular_reflectance }
     }
 
     /// Mitsuba's default: the perfect mirror (η = 0, k = 1).
@@ -52,7 +52,7 @@ impl Conductor {
         if ct <= 0.0 {
             return None;
         }
-        let weight = self.specular_reflectance.eval(sp.uv) * fresnel_conductor(ct, self.eta, self.k);
+        let weight = self.specular_reflectance.eval(sp.uv) * self.ior.fresnel(ct);
         Some(BsdfSample { wi: reflect(wo), pdf: 1.0, weight, lobe: Lobe::Delta, eta: 1.0 })
     }
 }

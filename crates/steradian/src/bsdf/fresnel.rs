@@ -46,6 +46,52 @@ pub fn fresnel_dielectric(cos_theta_i: f32, eta: f32) -> DielectricFresnel {
     DielectricFresnel { r, cos_theta_t, eta_it, eta_ti }
 }
 
+/// A conductor's complex index of refraction η + i·k (per channel, dimensionless). Mitsuba's
+/// default (`material` = `none`: η = 0, k = 1) is told apart: its Fresnel reflectance
+/// |(cos θ − i)/(cos θ + i)|² is 1 at every angle, so it needs no arithmetic (the general
+/// formula also gives exactly 1 there: `perfect_mirror_is_the_general_formula`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ConductorIor {
+    /// η = 0, k = 1: a perfect mirror.
+    Perfect,
+    Complex { eta: Spectrum, k: Spectrum },
+}
+
+impl ConductorIor {
+    pub fn new(eta: Spectrum, k: Spectrum) -> Self {
+        if eta == Spectrum::ZERO && k == Spectrum::ONE {
+            ConductorIor::Perfect
+        } else {
+            ConductorIor::Complex { eta, k }
+        }
+    }
+
+    /// η, the real part.
+    pub fn eta(&self) -> Spectrum {
+        match self {
+            ConductorIor::Perfect => Spectrum::ZERO,
+            ConductorIor::Complex { eta, .. } => *eta,
+        }
+    }
+
+    /// k, the imaginary part.
+    pub fn k(&self) -> Spectrum {
+        match self {
+            ConductorIor::Perfect => Spectrum::ONE,
+            ConductorIor::Complex { k, .. } => *k,
+        }
+    }
+
+    /// Fresnel reflectance for light arriving from outside at cos θ = `cos_theta_i` ≥ 0.
+    #[inline]
+    pub fn fresnel(&self, cos_theta_i: f32) -> Spectrum {
+        match self {
+            ConductorIor::Perfect => Spectrum::ONE,
+            ConductorIor::Complex { eta, k } => fresnel_conductor(cos_theta_i, *eta, *k),
+        }
+    }
+}
+
 /// Unpolarised Fresnel reflectance of a conductor with complex IOR η + i·k (per channel),
 /// for light arriving from outside (`cos_theta_i` ≥ 0).
 pub fn fresnel_conductor(cos_theta_i: f32, eta: Spectrum, k: Spectrum) -> Spectrum {
@@ -110,6 +156,21 @@ pub fn refract_about(w: Vec3, m: Vec3, cos_theta_t: f32, eta_ti: f32) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The shortcut of [`ConductorIor::Perfect`] changes no pixel: the general formula gives
+    /// exactly 1 for η = 0, k = 1 at every angle (here 10⁵ of them, grazing included).
+    #[test]
+    fn perfect_mirror_is_the_general_formula() {
+        assert_eq!(ConductorIor::new(Spectrum::ZERO, Spectrum::ONE), ConductorIor::Perfect);
+        for i in 0..=100_000 {
+            let cos = i as f32 / 100_000.0;
+            assert_eq!(fresnel_conductor(cos, Spectrum::ZERO, Spectrum::ONE), Spectrum::ONE, "cos θ = {cos}");
+        }
+        // other conductors keep the general formula
+        let gold = ConductorIor::new(Spectrum::new(0.2, 0.4, 1.4), Spectrum::new(3.6, 2.4, 1.8));
+        assert!(matches!(gold, ConductorIor::Complex { .. }));
+        assert!(gold.fresnel(0.5).max_element() < 1.0);
+    }
 
     #[test]
     fn diffuse_reflectance_fit_matches_quadrature() {

@@ -20,7 +20,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::fresnel::{fresnel_conductor, reflect_about};
+use super::fresnel::{reflect_about, ConductorIor};
 use super::microfacet::MicrofacetDistribution;
 use super::{positive, BsdfSample, Lobe, ShadingPoint};
 use crate::texture::Texture;
@@ -32,14 +32,14 @@ pub struct RoughConductor {
     /// Spatially varying α_u, α_v (Mitsuba accepts textures); `None` when both are constant,
     /// which `distribution` then holds.
     pub alpha_textures: Option<Box<(Texture, Texture)>>,
-    pub eta: Spectrum,
-    pub k: Spectrum,
+    /// η + i·k.
+    pub ior: ConductorIor,
     pub specular_reflectance: Texture,
 }
 
 impl RoughConductor {
     pub fn new(distribution: MicrofacetDistribution, eta: Spectrum, k: Spectrum, specular_reflectance: Texture) -> Self {
-        RoughConductor { distribution, alpha_textures: None, eta, k, specular_reflectance }
+        RoughConductor { distribution, alpha_textures: None, ior: ConductorIor::new(eta, k), specular_reflectance }
     }
 
     /// Spatially varying roughness: α_u, α_v read from textures (their `eval_1`).
@@ -66,7 +66,7 @@ impl RoughConductor {
             return Spectrum::ZERO;
         }
         let g = distr.g(wo, wi, h);
-        let f = fresnel_conductor(wo.dot(h), self.eta, self.k);
+        let f = self.ior.fresnel(wo.dot(h));
         self.specular_reflectance.eval(sp.uv) * f * (d * g / (4.0 * wo.z * wi.z))
     }
 
@@ -107,7 +107,7 @@ impl RoughConductor {
             return None;
         }
         let pdf = pdf_m / (4.0 * wi.dot(m));
-        let f = fresnel_conductor(wo.dot(m), self.eta, self.k);
+        let f = self.ior.fresnel(wo.dot(m));
         let weight = self.specular_reflectance.eval(sp.uv) * f * w;
         Some(BsdfSample { wi, pdf, weight, lobe: Lobe::Smooth, eta: 1.0 })
     }

@@ -163,6 +163,11 @@ impl Scene {
         if count == 0 {
             return None;
         }
+        if count == 1 {
+            // nothing to choose: the whole of u goes to the light (what the general case
+            // computes too, bit for bit, with a choice probability of exactly 1)
+            return self.emitters[0].sample_direction(&self.shapes, p, u);
+        }
         // invert the CDF, then reuse u.x's position inside the chosen interval
         let index = self.light_cdf.partition_point(|&c| c <= u.x).min(count - 1);
         let lo = if index == 0 { 0.0 } else { self.light_cdf[index - 1] };

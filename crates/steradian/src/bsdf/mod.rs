@@ -276,11 +276,13 @@ pub(crate) mod testing {
             let u1 = rng.next_f32();
             let u2 = Vec2::new(rng.next_f32(), rng.next_f32());
             if let Some(s) = bsdf.sample(&sp, wo, u1, u2) {
+                // the path tracer takes sampled directions as they come, without renormalising
+                assert!((s.wi.length() - 1.0).abs() < 1e-5, "sampled direction {} is not a unit vector (|wi| = {})", s.wi, s.wi.length());
                 if s.lobe == Lobe::Delta {
                     delta += 1;
                     continue;
                 }
-                let w = s.wi.normalize();
+                let w = s.wi;
                 let t = (w.z.clamp(-1.0, 1.0) as f64).acos();
                 let mut p = (w.y as f64).atan2(w.x as f64);
                 if p < 0.0 {
@@ -445,6 +447,7 @@ pub(crate) mod testing {
         for _ in 0..n {
             let u2 = Vec2::new(rng.next_f32(), rng.next_f32());
             if let Some(s) = bsdf.sample(&sp, wo, rng.next_f32(), u2) {
+                assert!((s.wi.length() - 1.0).abs() < 1e-5, "sampled direction {} is not a unit vector (|wi| = {})", s.wi, s.wi.length());
                 for c in 0..3 {
                     let v = s.weight[c] as f64;
                     s1[c] += v;

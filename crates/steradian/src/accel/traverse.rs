@@ -59,14 +59,15 @@ impl TravRay {
     #[inline(always)]
     pub fn new(ray: &Ray, t_min: f32) -> TravRay {
         let inv_d = ray.d.recip();
-        let near: [usize; 3] = std::array::from_fn(|a| if inv_d[a].is_sign_negative() { a + 3 } else { a });
+        // branch-free (see `WatertightRay::new`): the slab of each axis the ray enters first
+        let near: [usize; 3] = std::array::from_fn(|a| a + 3 * inv_d[a].is_sign_negative() as usize);
         let wt = WatertightRay::new(ray.d);
         TravRay {
             o: ray.o.to_array(),
             inv_d: inv_d.to_array(),
             inv_far: (inv_d * FAR_SCALE).to_array(),
             near,
-            far: near.map(|p| if p >= 3 { p - 3 } else { p + 3 }),
+            far: std::array::from_fn(|a| near[a] ^ (a ^ (a + 3))),
             t_min,
             wt,
             o_k: wt.k.map(|k| ray.o[k]),

@@ -30,19 +30,18 @@ pub(super) struct WatertightRay {
 impl WatertightRay {
     #[inline]
     pub fn new(d: Vec3) -> Self {
+        // The dominant axis and the permutation are computed without branches: for incoherent
+        // rays (diffuse bounces) each comparison is a coin toss, which a branch would mispredict
+        // half the time on the chain from one hit to the next ray.
         let a = d.abs();
-        let kz = if a.x >= a.y && a.x >= a.z {
-            0
-        } else if a.y >= a.z {
-            1
-        } else {
-            2
-        };
-        let (mut kx, mut ky) = ((kz + 1) % 3, (kz + 2) % 3);
-        // keep the winding (sign of the edge functions) independent of the direction's sign
-        if d[kz] < 0.0 {
-            std::mem::swap(&mut kx, &mut ky);
-        }
+        let x_dominant = (a.x >= a.y) & (a.x >= a.z);
+        let z_over_y = (a.y < a.z) as usize;
+        let kz = (!x_dominant as usize) * (1 + z_over_y);
+        // keep the winding (sign of the edge functions) independent of the direction's sign:
+        // (kx, ky) = (kz + 1, kz + 2) mod 3, swapped where d[kz] < 0
+        let negative = (d[kz] < 0.0) as usize;
+        let kx = (kz + 1 + negative) % 3;
+        let ky = (kz + 2 - negative) % 3;
         // one division per ray instead of three
         let sz = 1.0 / d[kz];
         WatertightRay { k: [kx, ky, kz], s: [d[kx] * sz, d[ky] * sz, sz] }

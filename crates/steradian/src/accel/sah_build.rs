@@ -151,15 +151,21 @@ fn block_cost(n: usize, other: usize) -> f32 {
     (n - other).div_ceil(TRI_BLOCK) as f32 + other as f32
 }
 
-fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNode {
+/// The bounds of `prims`, the bounds of their centroids, and how many are triangles.
+fn extent(prims: &[BuildPrim]) -> (Aabb, Aabb, usize) {
     let mut bounds = Aabb::EMPTY;
     let mut cbounds = Aabb::EMPTY;
     let mut triangles = 0usize;
-    for p in prims.iter() {
+    for p in prims {
         bounds = bounds.union(&p.bounds);
         cbounds.grow(p.centroid);
         triangles += p.is_triangle as usize;
     }
+    (bounds, cbounds, triangles)
+}
+
+fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNode {
+    let (bounds, cbounds, triangles) = extent(prims);
     let count = prims.len();
     let pure = triangles == count || triangles == 0;
     if count == 1 {
@@ -167,7 +173,7 @@ fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNod
     }
     let mid = match (depth < SAH_MAX_DEPTH).then(|| sah_split(prims, &bounds, &cbounds, count - triangles, SplitPolicy::LeafIfCheaper)).flatten() {
         Some(mid) => mid,
-        None if count <= MAX_LEAF && pure => return refined_leaf(prims, offset),
+        None if count <= MAX_LEAF && pure => return refined_leaf(prims, offset, bounds, &cbounds),
         None if count <= MAX_LEAF => {
             // the SAH wants a leaf, but leaves hold one kind: triangles first, then the rest
             let mut i = 0;
@@ -197,15 +203,10 @@ fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNod
     BinaryNode::Inner { bounds, children: Box::new([l, r]) }
 }
 
-/// A leaf over `prims` (all of one kind, at most [`MAX_LEAF`]) with its refinement (see
-/// [`BinaryNode`]), reordering `prims` within their range as the refinement splits them.
-fn refined_leaf(prims: &mut [BuildPrim], offset: usize) -> BinaryNode {
-    let mut bounds = Aabb::EMPTY;
-    let mut cbounds = Aabb::EMPTY;
-    for p in prims.iter() {
-        bounds = bounds.union(&p.bounds);
-        cbounds.grow(p.centroid);
-    }
+/// A leaf over `prims` (all of one kind, at most [`MAX_LEAF`]; `bounds` and `cbounds` from
+/// [`extent`]) with its refinement (see [`BinaryNode`]), reordering `prims` within their range
+/// as the refinement splits them.
+fn refined_leaf(prims: &mut [BuildPrim], offset: usize, bounds: Aabb, cbounds: &Aabb) -> BinaryNode {
     let count = prims.len();
     let triangles = prims[0].is_triangle;
     let other = if triangles { 0 } else { count };
@@ -220,13 +221,14 @@ fn refined_leaf(prims: &mut [BuildPrim], offset: usize) -> BinaryNode {
     // of the leaf's: a wall and a light pass; overlapping halves do not.
     let cost = |b: &Aabb, n: usize| b.surface_area() * leaf_cost(n, triangles);
     let several_shapes = prims.iter().any(|p| p.shape != prims[0].shape);
-    let refined = (count > 1 && several_shapes).then(|| sah_split(prims, &bounds, &cbounds, other, SplitPolicy::Always)).flatten().and_then(|mid| {
+    let refined = (count > 1 && several_shapes).then(|| sah_split(prims, &bounds, cbounds, other, SplitPolicy::Always)).flatten().and_then(|mid| {
         let (left, right) = prims.split_at_mut(mid);
-        let children = Box::new([refined_leaf(left, offset), refined_leaf(right, offset + mid)]);
-        let split_cost = cost(children[0].bounds(), mid) + cost(children[1].bounds(), count - mid);
+        let ((lb, lc, _), (rb, rc, _)) = (extent(left), extent(right));
+        let split_cost = cost(&lb, mid) + cost(&rb, count - mid);
         let grows = leaf_cost(mid, triangles) + leaf_cost(count - mid, triangles) > leaf_cost(count, triangles);
         let gain = if grows && triangles { REFINE_GROWTH_GAIN } else { 1.0 };
-        (split_cost < gain * cost(&bounds, count)).then_some(children)
+        // the halves are refined in turn only where the split is kept
+        (split_cost < gain * cost(&bounds, count)).then(|| Box::new([refined_leaf(left, offset, lb, &lc), refined_leaf(right, offset + mid, rb, &rc)]))
     });
     BinaryNode::Leaf { bounds, start: offset, count, triangles, refined }
 }

@@ -12,7 +12,11 @@ use std::process::ExitCode;
 use clap::{Parser, Subcommand};
 
 #[derive(Parser)]
-#[command(name = "steradian", version, about = "Physically based rendering and light measurement of Mitsuba 3 scenes")]
+#[command(
+    name = "steradian",
+    version,
+    about = "Physically based rendering and light measurement of Mitsuba 3 scenes"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,

@@ -39,8 +39,17 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         return Err("--spp must be at least 1".into());
     }
     let s = scene.sensors.get(sensor).ok_or("the scene has no sensor")?;
-    let m = measure(&scene, &RenderOptions { spp: args.spp, seed: args.seed, sensor: Some(sensor), threads: args.threads, ..Default::default() })
-        .map_err(|e| e.to_string())?;
+    let m = measure(
+        &scene,
+        &RenderOptions {
+            spp: args.spp,
+            seed: args.seed,
+            sensor: Some(sensor),
+            threads: args.threads,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| e.to_string())?;
     let (quantity, unit, mean, se) = (m.quantity, m.unit(), m.value, m.stderr);
     let id = if s.id.is_empty() { format!("#{sensor}") } else { s.id.clone() };
     if args.json {

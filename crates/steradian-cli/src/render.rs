@@ -7,8 +7,8 @@ use std::time::Duration;
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
-use steradian::film::{write_exr, write_png};
 use steradian::film::false_color_png;
+use steradian::film::{write_exr, write_png};
 use steradian::integrator::{render, PixelQuantity, Progress, RenderOptions};
 use steradian::sampling::SamplerKind;
 
@@ -131,12 +131,19 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         (None, Some(path)) => path.with_extension("exr"),
         (None, None) => PathBuf::from(format!("{BUILTIN_NAME}.exr")),
     };
-    if output.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase()) != Some("exr".into()) {
+    if output.extension().and_then(|e| e.to_str()).map(|e| e.to_ascii_lowercase())
+        != Some("exr".into())
+    {
         return Err(format!("output file '{}' must end in .exr", output.display()).into());
     }
     let scene = match &args.scene {
         Some(path) => steradian_mitsuba::load_file(path, &defines)?,
-        None => steradian_mitsuba::load_string(BUILTIN_SCENE, Path::new(&format!("<built-in {BUILTIN_NAME}.xml>")), Path::new("."), &defines)?,
+        None => steradian_mitsuba::load_string(
+            BUILTIN_SCENE,
+            Path::new(&format!("<built-in {BUILTIN_NAME}.xml>")),
+            Path::new("."),
+            &defines,
+        )?,
     };
     let sensor = match &args.sensor {
         Some(id) => Some(scene.find_sensor(id)?),
@@ -160,15 +167,20 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     } else {
         let b = ProgressBar::new(1000);
         b.set_style(
-            ProgressStyle::with_template("{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}%  ETA {eta}  {msg}")
-                .expect("valid progress template"),
+            ProgressStyle::with_template(
+                "{spinner} [{elapsed_precise}] {wide_bar} {percent:>3}%  ETA {eta}  {msg}",
+            )
+            .expect("valid progress template"),
         );
         b.enable_steady_tick(Duration::from_millis(200));
         b
     };
     let progress = |p: Progress| {
         bar.set_position(p.samples_done * 1000 / p.samples_total.max(1));
-        bar.set_message(format!("{:.1} Msamples/s", p.samples_done as f64 / p.elapsed.as_secs_f64().max(1e-9) / 1e6));
+        bar.set_message(format!(
+            "{:.1} Msamples/s",
+            p.samples_done as f64 / p.elapsed.as_secs_f64().max(1e-9) / 1e6
+        ));
     };
     let opts = RenderOptions {
         spp: args.spp,
@@ -209,7 +221,10 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
 
     let secs = out.elapsed.as_secs_f64();
     if out.interrupted {
-        eprintln!("interrupted: the image holds {} of {} samples per pixel", out.spp, out.spp_requested);
+        eprintln!(
+            "interrupted: the image holds {} of {} samples per pixel",
+            out.spp, out.spp_requested
+        );
     }
     println!(
         "rendered {}x{} at {} spp in {:.2} s ({:.2} Msamples/s), {} dropped NaN/Inf samples",
@@ -221,8 +236,14 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         out.dropped_samples
     );
     match (out.branches, out.pilot) {
-        (Some(n), Some(p)) => println!("path: {n} {} per camera sample, chosen by a pilot of {} samples", plural(n, "branch", "branches"), p.samples),
-        (Some(n), None) => println!("path: {n} {} per camera sample", plural(n, "branch", "branches")),
+        (Some(n), Some(p)) => println!(
+            "path: {n} {} per camera sample, chosen by a pilot of {} samples",
+            plural(n, "branch", "branches"),
+            p.samples
+        ),
+        (Some(n), None) => {
+            println!("path: {n} {} per camera sample", plural(n, "branch", "branches"))
+        }
         _ => {}
     }
     println!("wrote {} and {}", output.display(), png.display());

@@ -28,12 +28,21 @@ pub fn run(args: VerifyArgs) -> Result<(), CliError> {
                 m.name, m.expected, m.measured, m.tolerance, m.pass
             );
         } else {
-            println!("{:<40} {:>16.10} {:>16.10} {:>6}", m.name, m.expected, m.measured, if m.pass { "pass" } else { "FAIL" });
+            println!(
+                "{:<40} {:>16.10} {:>16.10} {:>6}",
+                m.name,
+                m.expected,
+                m.measured,
+                if m.pass { "pass" } else { "FAIL" }
+            );
         }
     }
     if !args.json {
         println!();
-        println!("{:<34} {:>3} {:>12} {:>24} {:>7} {:>6}  units", "rendered case", "ch", "expected", "measured ± stderr", "z", "");
+        println!(
+            "{:<34} {:>3} {:>12} {:>24} {:>7} {:>6}  units",
+            "rendered case", "ch", "expected", "measured ± stderr", "z", ""
+        );
     }
     for name in case_names() {
         let r = run_case(&name, 7, None, args.threads)?;
@@ -47,10 +56,22 @@ pub fn run(args: VerifyArgs) -> Result<(), CliError> {
         }
         for (c, ch) in ["R", "G", "B"].iter().enumerate() {
             let label = if c == 0 { r.name.as_str() } else { "" };
-            let status = if c == 0 { if r.pass { "pass" } else { "FAIL" } } else { "" };
+            let status = if c == 0 {
+                if r.pass {
+                    "pass"
+                } else {
+                    "FAIL"
+                }
+            } else {
+                ""
+            };
             println!(
                 "{label:<34} {ch:>3} {:>12.6} {:>12.6} ± {:<9.2e} {:>7.2} {status:>6}  {}",
-                r.expected[c], r.measured[c], r.stderr[c], r.z[c], if c == 0 { r.units.as_str() } else { "" }
+                r.expected[c],
+                r.measured[c],
+                r.stderr[c],
+                r.z[c],
+                if c == 0 { r.units.as_str() } else { "" }
             );
         }
     }

@@ -43,7 +43,10 @@ fn fails(dir: &Path, args: &[&str], needles: &[&str]) -> String {
     assert_eq!(out.status.code(), Some(1), "steradian {args:?}: {stderr}");
     assert!(!stderr.contains("panicked"), "steradian {args:?} panicked:\n{stderr}");
     for needle in needles {
-        assert!(stderr.contains(needle), "stderr of {args:?} does not contain {needle:?}:\n{stderr}");
+        assert!(
+            stderr.contains(needle),
+            "stderr of {args:?} does not contain {needle:?}:\n{stderr}"
+        );
     }
     // Said once, not `error: file:1:2: error: ...`.
     assert_eq!(stderr.matches("error:").count(), 1, "{stderr}");
@@ -99,7 +102,10 @@ fn builtin_scene_without_arguments() {
 #[test]
 fn output_spp_seed_and_defines() {
     let dir = temp_dir("options");
-    let stdout = ok(&dir, &["render", "-o", "out.exr", "--spp", "3", "--seed", "7", "-D", "res=32", "--quiet"]);
+    let stdout = ok(
+        &dir,
+        &["render", "-o", "out.exr", "--spp", "3", "--seed", "7", "-D", "res=32", "--quiet"],
+    );
     assert!(stdout.contains("rendered 32x32 at 3 spp"), "{stdout}");
     assert!(stdout.contains("out.exr") && stdout.contains("out.png"), "{stdout}");
     assert!(dir.join("out.png").is_file());
@@ -108,8 +114,14 @@ fn output_spp_seed_and_defines() {
     assert_eq!((a.width, a.height), (32, 32));
     assert_finite_positive(&a);
     // Another seed gives another image; the same seed the same one.
-    ok(&dir, &["render", "-o", "seed8.exr", "--spp", "3", "--seed", "8", "-D", "res=32", "--quiet"]);
-    ok(&dir, &["render", "-o", "again.exr", "--spp", "3", "--seed", "7", "-D", "res=32", "--quiet"]);
+    ok(
+        &dir,
+        &["render", "-o", "seed8.exr", "--spp", "3", "--seed", "8", "-D", "res=32", "--quiet"],
+    );
+    ok(
+        &dir,
+        &["render", "-o", "again.exr", "--spp", "3", "--seed", "7", "-D", "res=32", "--quiet"],
+    );
     assert_ne!(read(&dir.join("seed8.exr")).data, a.data);
     assert_eq!(read(&dir.join("again.exr")).data, a.data);
 }
@@ -148,12 +160,20 @@ fn bad_input_is_an_error_not_a_panic() {
     // Missing scene file.
     fails(&dir, &["render", "nothere.xml"], &["error: ", "cannot read scene file", "nothere.xml"]);
     // Malformed XML: the root is never closed.
-    std::fs::write(dir.join("malformed.xml"), "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>\n").unwrap();
+    std::fs::write(
+        dir.join("malformed.xml"),
+        "<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n</scene>\n",
+    )
+    .unwrap();
     let e = fails(&dir, &["render", "malformed.xml"], &["malformed.xml:3:", "malformed XML"]);
     assert!(e.starts_with("malformed.xml:3:"), "{e}");
     // Unknown plugin.
     std::fs::write(dir.join("unknown.xml"), "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n  <shape type=\"spheer\"/>\n</scene>\n").unwrap();
-    let e = fails(&dir, &["render", "unknown.xml"], &["unknown.xml:3:3: error: unknown shape plugin type 'spheer'"]);
+    let e = fails(
+        &dir,
+        &["render", "unknown.xml"],
+        &["unknown.xml:3:3: error: unknown shape plugin type 'spheer'"],
+    );
     assert!(e.starts_with("unknown.xml:3:3: error: "), "{e}");
     // A missing mesh: at the filename, naming the mesh.
     std::fs::write(
@@ -161,16 +181,28 @@ fn bad_input_is_an_error_not_a_panic() {
         "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<shape type=\"obj\">\n  <string name=\"filename\" value=\"gone.obj\"/>\n</shape>\n</scene>\n",
     )
     .unwrap();
-    fails(&dir, &["render", "mesh.xml"], &["mesh.xml:4:3: error: ", "cannot open OBJ file", "gone.obj"]);
+    fails(
+        &dir,
+        &["render", "mesh.xml"],
+        &["mesh.xml:4:3: error: ", "cannot open OBJ file", "gone.obj"],
+    );
     // Command-line mistakes.
     fails(&dir, &["render", "-D", "res"], &["error: -D expects NAME=VALUE, got 'res'"]);
     fails(&dir, &["render", "-D", "resolution=32"], &["unused parameter 'resolution'"]);
     fails(&dir, &["render", "-o", "out.txt"], &["error: output file 'out.txt' must end in .exr"]);
     fails(&dir, &["render", "--spp", "0"], &["error: --spp must be at least 1"]);
     fails(&dir, &["render", "--threads", "0"], &["error: --threads must be at least 1"]);
-    fails(&dir, &["render", "--sensor", "nope", "--spp", "1"], &["error: the scene has no sensor with id 'nope' (sensor ids: top-down)"]);
+    fails(
+        &dir,
+        &["render", "--sensor", "nope", "--spp", "1"],
+        &["error: the scene has no sensor with id 'nope' (sensor ids: top-down)"],
+    );
     let scene = two_sensor_scene(&dir);
-    fails(&dir, &["render", scene.to_str().unwrap(), "--sensor", "big"], &["no sensor with id 'big' (sensor ids: small, wide)"]);
+    fails(
+        &dir,
+        &["render", scene.to_str().unwrap(), "--sensor", "big"],
+        &["no sensor with id 'big' (sensor ids: small, wide)"],
+    );
     // Nothing was written by the failed runs.
     let written: Vec<_> = std::fs::read_dir(&dir)
         .unwrap()

@@ -66,7 +66,12 @@ pub fn load_file(path: &Path, defines: &[(String, String)]) -> Result<Scene, Loa
 
 /// Loads a scene from a string. `name` is how error messages call it; relative file names
 /// (meshes) resolve against `base_dir`.
-pub fn load_string(xml: &str, name: &Path, base_dir: &Path, defines: &[(String, String)]) -> Result<Scene, LoadError> {
+pub fn load_string(
+    xml: &str,
+    name: &Path,
+    base_dir: &Path,
+    defines: &[(String, String)],
+) -> Result<Scene, LoadError> {
     let tree = xml::parse_string_named(xml, name, base_dir, defines)?;
     build_scene(&tree, base_dir)
 }

@@ -92,12 +92,21 @@ impl Properties {
 
     /// Adds a property. The parser has already refused duplicates; a duplicate here is
     /// an error too.
-    pub fn insert(&mut self, name: impl Into<String>, value: PropertyValue, pos: SourcePos) -> Result<(), LoadError> {
+    pub fn insert(
+        &mut self,
+        name: impl Into<String>,
+        value: PropertyValue,
+        pos: SourcePos,
+    ) -> Result<(), LoadError> {
         let name = name.into();
         if let Some(prev) = self.entries.iter().find(|e| e.name == name) {
             return Err(LoadError::at(
                 &pos,
-                format!("property '{name}' is specified twice in {} (first at {})", self.owner, prev.pos.line_col()),
+                format!(
+                    "property '{name}' is specified twice in {} (first at {})",
+                    self.owner,
+                    prev.pos.line_col()
+                ),
             ));
         }
         self.entries.push(Entry { name, value, pos, used: AtomicBool::new(false) });
@@ -150,14 +159,21 @@ impl Properties {
 
     /// Names of the properties nobody has read, in document order.
     pub fn unused(&self) -> Vec<&str> {
-        self.entries.iter().filter(|e| !e.used.load(Ordering::Relaxed)).map(|e| e.name.as_str()).collect()
+        self.entries
+            .iter()
+            .filter(|e| !e.used.load(Ordering::Relaxed))
+            .map(|e| e.name.as_str())
+            .collect()
     }
 
     /// Errors on the first property that was never read:
     /// `unreferenced property 'foo' in <bsdf type="diffuse">`, at that property.
     pub fn check_all_used(&self, plugin_desc: &str) -> Result<(), LoadError> {
         match self.entries.iter().find(|e| !e.used.load(Ordering::Relaxed)) {
-            Some(e) => Err(LoadError::at(&e.pos, format!("unreferenced property '{}' in {plugin_desc}", e.name))),
+            Some(e) => Err(LoadError::at(
+                &e.pos,
+                format!("unreferenced property '{}' in {plugin_desc}", e.name),
+            )),
             None => Ok(()),
         }
     }
@@ -176,7 +192,11 @@ impl Properties {
             Some(v) => Ok(Some(v)),
             None => Err(LoadError::at(
                 &e.pos,
-                format!("property '{name}' of {} must be {expected}, got {}", self.owner, e.value.type_name()),
+                format!(
+                    "property '{name}' of {} must be {expected}, got {}",
+                    self.owner,
+                    e.value.type_name()
+                ),
             )),
         }
     }
@@ -267,7 +287,10 @@ mod tests {
         p.insert("rr_depth", PropertyValue::Int(5), pos(3)).unwrap();
         p.insert("foo", PropertyValue::Bool(true), pos(4)).unwrap();
         let e = p.get_int("max_depth").unwrap_err();
-        assert_eq!(e.message, "property 'max_depth' of <integrator type=\"path\"> must be integer, got float");
+        assert_eq!(
+            e.message,
+            "property 'max_depth' of <integrator type=\"path\"> must be integer, got float"
+        );
         assert_eq!(e.pos.unwrap().line, 2);
         assert_eq!(p.get_float("rr_depth").unwrap(), Some(5.0));
         assert_eq!(p.get_int("missing").unwrap(), None);

@@ -115,7 +115,12 @@ pub fn xyz_to_srgb(xyz: [f64; 3]) -> [f64; 3] {
 /// Mitsuba's `spectrum_list_to_srgb(wavelengths, values, bounded, d65)`, including the
 /// `MI_CIE_Y_NORMALIZATION` scaling that `xml.cpp` applies to the values beforehand.
 /// `wavelengths` must be sorted, with at least two entries and the same length as `values`.
-pub fn spectrum_list_to_srgb(wavelengths: &[f64], values: &[f64], bounded: bool, d65: bool) -> Vec3 {
+pub fn spectrum_list_to_srgb(
+    wavelengths: &[f64],
+    values: &[f64],
+    bounded: bool,
+    d65: bool,
+) -> Vec3 {
     assert!(wavelengths.len() >= 2 && wavelengths.len() == values.len());
     let (first, last) = (wavelengths[0], wavelengths[wavelengths.len() - 1]);
     let steps = 1000;
@@ -126,7 +131,8 @@ pub fn spectrum_list_to_srgb(wavelengths: &[f64], values: &[f64], bounded: bool,
             continue;
         }
         // Largest index with wavelengths[idx] <= w, clamped to [0, n-2].
-        let idx = wavelengths.partition_point(|&x| x <= w).saturating_sub(1).min(wavelengths.len() - 2);
+        let idx =
+            wavelengths.partition_point(|&x| x <= w).saturating_sub(1).min(wavelengths.len() - 2);
         let (w0, w1) = (wavelengths[idx], wavelengths[idx + 1]);
         let (v0, v1) = (values[idx] * CIE_Y_NORMALIZATION, values[idx + 1] * CIE_Y_NORMALIZATION);
         let v = ((w - w1) * v0 + (w0 - w) * v1) / (w0 - w1);
@@ -220,7 +226,11 @@ mod tests {
     #[test]
     fn narrow_band_is_coloured_and_clamped() {
         // A red band: R dominates, and a bounded spectrum never leaves [0, 1].
-        let c = wavelength_list_to_rgb(&[600.0, 610.0, 690.0, 700.0], &[0.0, 1.0, 1.0, 0.0], SpectrumRole::Reflectance);
+        let c = wavelength_list_to_rgb(
+            &[600.0, 610.0, 690.0, 700.0],
+            &[0.0, 1.0, 1.0, 0.0],
+            SpectrumRole::Reflectance,
+        );
         assert!(c.x > c.y && c.x > c.z, "{c}");
         assert!(c.max_element() <= 1.0 && c.min_element() >= 0.0);
         // Outside the given range the spectrum contributes nothing.

@@ -23,7 +23,10 @@ pub(crate) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> 
             attrs.allow(&["x", "y", "z", "value"])?;
             let v = xyz(attrs, 1.0)?;
             Transform::scale(v).map_err(|_| {
-                attrs.error(format!("<scale> by ({}, {}, {}) makes the transform singular (a scale factor is zero)", v.x, v.y, v.z))
+                attrs.error(format!(
+                    "<scale> by ({}, {}, {}) makes the transform singular (a scale factor is zero)",
+                    v.x, v.y, v.z
+                ))
             })
         }
         "rotate" => {
@@ -46,8 +49,15 @@ pub(crate) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> 
             }
             let m: [f32; 16] = match v.len() {
                 16 => v.try_into().unwrap_or([0.0; 16]),
-                9 => [v[0], v[1], v[2], 0.0, v[3], v[4], v[5], 0.0, v[6], v[7], v[8], 0.0, 0.0, 0.0, 0.0, 1.0],
-                n => return Err(attrs.error(format!("<matrix> needs 16 (4×4) or 9 (3×3) numbers, got {n}"))),
+                9 => [
+                    v[0], v[1], v[2], 0.0, v[3], v[4], v[5], 0.0, v[6], v[7], v[8], 0.0, 0.0, 0.0,
+                    0.0, 1.0,
+                ],
+                n => {
+                    return Err(
+                        attrs.error(format!("<matrix> needs 16 (4×4) or 9 (3×3) numbers, got {n}"))
+                    )
+                }
             };
             Transform::from_row_major(&m).map_err(|e| match e {
                 TransformError::NotFinite => attrs.error("<matrix> has a NaN or infinite entry"),
@@ -68,8 +78,9 @@ pub(crate) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> 
                 None => coordinate_system_first(dir.normalize()),
             };
             let up = if up == Vec3::ZERO { coordinate_system_first(dir.normalize()) } else { up };
-            Transform::look_at(origin, target, up)
-                .map_err(|_| attrs.error("<lookat> is degenerate: 'up' is parallel to the viewing direction"))
+            Transform::look_at(origin, target, up).map_err(|_| {
+                attrs.error("<lookat> is degenerate: 'up' is parallel to the viewing direction")
+            })
         }
         _ => Err(attrs.error(format!("unexpected transform operation <{op}>"))),
     }
@@ -80,14 +91,18 @@ pub(crate) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> 
 fn xyz(attrs: &Attrs, default: f64) -> Result<Vec3, LoadError> {
     if let Some(a) = attrs.get("value") {
         if attrs.get("x").is_some() || attrs.get("y").is_some() || attrs.get("z").is_some() {
-            return Err(attrs.error(format!("<{}> can't mix 'value' with 'x'/'y'/'z' attributes", attrs.elem)));
+            return Err(attrs
+                .error(format!("<{}> can't mix 'value' with 'x'/'y'/'z' attributes", attrs.elem)));
         }
         let tokens = crate::xml::tokenize(&a.value);
         let nums = tokens.iter().map(|t| attrs.number(a, t)).collect::<Result<Vec<_>, _>>()?;
         return match nums.len() {
             1 => Ok(Vec3::splat(nums[0] as f32)),
             3 => Ok(Vec3::new(nums[0] as f32, nums[1] as f32, nums[2] as f32)),
-            n => Err(LoadError::at(&a.pos, format!("'value' of <{}> must have 1 or 3 numbers, got {n}", attrs.elem))),
+            n => Err(LoadError::at(
+                &a.pos,
+                format!("'value' of <{}> must have 1 or 3 numbers, got {n}", attrs.elem),
+            )),
         };
     }
     let mut out = [default; 3];
@@ -99,7 +114,9 @@ fn xyz(attrs: &Attrs, default: f64) -> Result<Vec3, LoadError> {
         }
     }
     if !found {
-        return Err(attrs.error(format!("<{}> needs 'value' or at least one of 'x', 'y', 'z'", attrs.elem)));
+        return Err(
+            attrs.error(format!("<{}> needs 'value' or at least one of 'x', 'y', 'z'", attrs.elem))
+        );
     }
     Ok(Vec3::new(out[0] as f32, out[1] as f32, out[2] as f32))
 }
@@ -109,7 +126,14 @@ fn vec3_attr(attrs: &Attrs, name: &str) -> Result<Vec3, LoadError> {
     let a = attrs.require(name)?;
     let tokens = crate::xml::tokenize(&a.value);
     if tokens.len() != 3 {
-        return Err(LoadError::at(&a.pos, format!("'{name}' of <{}> must have exactly 3 numbers, got {}", attrs.elem, tokens.len())));
+        return Err(LoadError::at(
+            &a.pos,
+            format!(
+                "'{name}' of <{}> must have exactly 3 numbers, got {}",
+                attrs.elem,
+                tokens.len()
+            ),
+        ));
     }
     let mut v = [0.0f32; 3];
     for (i, t) in tokens.iter().enumerate() {

@@ -14,13 +14,34 @@ use steradian::radiometry as rad;
 
 /// The embedded scenes, by the file name the cases use.
 const SCENES: &[(&str, &str)] = &[
-    ("point_normal_incidence.xml", include_str!("../../../scenes/validation/point_normal_incidence.xml")),
-    ("point_inverse_square.xml", include_str!("../../../scenes/validation/point_inverse_square.xml")),
-    ("disk_on_axis_irradiance.xml", include_str!("../../../scenes/validation/disk_on_axis_irradiance.xml")),
-    ("rect_parallel_corner_irradiance.xml", include_str!("../../../scenes/validation/rect_parallel_corner_irradiance.xml")),
-    ("area_emitter_one_sided.xml", include_str!("../../../scenes/validation/area_emitter_one_sided.xml")),
-    ("env_constant_irradiance.xml", include_str!("../../../scenes/validation/env_constant_irradiance.xml")),
-    ("furnace_convex_sphere.xml", include_str!("../../../scenes/validation/furnace_convex_sphere.xml")),
+    (
+        "point_normal_incidence.xml",
+        include_str!("../../../scenes/validation/point_normal_incidence.xml"),
+    ),
+    (
+        "point_inverse_square.xml",
+        include_str!("../../../scenes/validation/point_inverse_square.xml"),
+    ),
+    (
+        "disk_on_axis_irradiance.xml",
+        include_str!("../../../scenes/validation/disk_on_axis_irradiance.xml"),
+    ),
+    (
+        "rect_parallel_corner_irradiance.xml",
+        include_str!("../../../scenes/validation/rect_parallel_corner_irradiance.xml"),
+    ),
+    (
+        "area_emitter_one_sided.xml",
+        include_str!("../../../scenes/validation/area_emitter_one_sided.xml"),
+    ),
+    (
+        "env_constant_irradiance.xml",
+        include_str!("../../../scenes/validation/env_constant_irradiance.xml"),
+    ),
+    (
+        "furnace_convex_sphere.xml",
+        include_str!("../../../scenes/validation/furnace_convex_sphere.xml"),
+    ),
     ("emissive_room.xml", include_str!("../../../scenes/validation/emissive_room.xml")),
 ];
 const CASES: &str = include_str!("../../../scenes/validation/cases.json");
@@ -63,18 +84,29 @@ fn as_f64(v: &Value, what: &str) -> Result<f64, String> {
 }
 
 fn triple(v: &Value, what: &str) -> Result<[f64; 3], String> {
-    let a = v.as_array().filter(|a| a.len() == 3).ok_or_else(|| format!("{what} must hold 3 numbers"))?;
+    let a = v
+        .as_array()
+        .filter(|a| a.len() == 3)
+        .ok_or_else(|| format!("{what} must hold 3 numbers"))?;
     Ok([as_f64(&a[0], what)?, as_f64(&a[1], what)?, as_f64(&a[2], what)?])
 }
 
 /// Names of the rendered cases.
 pub fn case_names() -> Vec<String> {
     let doc: Value = serde_json::from_str(CASES).expect("embedded cases.json is valid JSON");
-    doc["cases"].as_array().map(|a| a.iter().filter_map(|c| c["name"].as_str().map(String::from)).collect()).unwrap_or_default()
+    doc["cases"]
+        .as_array()
+        .map(|a| a.iter().filter_map(|c| c["name"].as_str().map(String::from)).collect())
+        .unwrap_or_default()
 }
 
 /// Runs the rendered case `name` (at its own spp, or `spp_override`) with `seed`.
-pub fn run_case(name: &str, seed: u64, spp_override: Option<u32>, threads: Option<usize>) -> Result<CaseResult, String> {
+pub fn run_case(
+    name: &str,
+    seed: u64,
+    spp_override: Option<u32>,
+    threads: Option<usize>,
+) -> Result<CaseResult, String> {
     let doc: Value = serde_json::from_str(CASES).map_err(|e| e.to_string())?;
     let case = doc["cases"]
         .as_array()
@@ -82,13 +114,29 @@ pub fn run_case(name: &str, seed: u64, spp_override: Option<u32>, threads: Optio
         .ok_or_else(|| format!("no case named '{name}'"))?;
     let file = case["file"].as_str().ok_or("case without file")?;
     let file_name = Path::new(file).file_name().and_then(|f| f.to_str()).ok_or("bad file")?;
-    let xml = SCENES.iter().find(|(n, _)| *n == file_name).map(|(_, x)| *x).ok_or_else(|| format!("scene {file} is not embedded"))?;
-    let scene = crate::load_string(xml, Path::new(file), Path::new("."), &[]).map_err(|e| e.to_string())?;
+    let xml = SCENES
+        .iter()
+        .find(|(n, _)| *n == file_name)
+        .map(|(_, x)| *x)
+        .ok_or_else(|| format!("scene {file} is not embedded"))?;
+    let scene =
+        crate::load_string(xml, Path::new(file), Path::new("."), &[]).map_err(|e| e.to_string())?;
     let sensor_id = case["sensor_id"].as_str().ok_or("case without sensor_id")?;
-    let sensor = scene.sensor_index(sensor_id).ok_or_else(|| format!("{file} has no sensor '{sensor_id}'"))?;
+    let sensor = scene
+        .sensor_index(sensor_id)
+        .ok_or_else(|| format!("{file} has no sensor '{sensor_id}'"))?;
     let spp = spp_override.unwrap_or(as_f64(&case["spp"], "spp")? as u32);
-    let out = render(&scene, &RenderOptions { spp: Some(spp), seed: Some(seed), sensor: Some(sensor), threads, ..Default::default() })
-        .map_err(|e| e.to_string())?;
+    let out = render(
+        &scene,
+        &RenderOptions {
+            spp: Some(spp),
+            seed: Some(seed),
+            sensor: Some(sensor),
+            threads,
+            ..Default::default()
+        },
+    )
+    .map_err(|e| e.to_string())?;
     let image = out.film.develop();
     let err = out.film.develop_stderr();
     let (measured, stderr) = match case["reduce"].as_str() {
@@ -148,7 +196,9 @@ pub fn run_case(name: &str, seed: u64, spp_override: Option<u32>, threads: Optio
 
 /// Evaluates one math case with the `radiometry` module.
 fn eval_math(name: &str, inputs: &Value) -> Result<f64, String> {
-    let get = |k: &str| inputs[k].as_f64().ok_or_else(|| format!("math case {name}: missing input '{k}'"));
+    let get = |k: &str| {
+        inputs[k].as_f64().ok_or_else(|| format!("math case {name}: missing input '{k}'"))
+    };
     // Hemispherical integrals are computed by quadrature of the radiometry functions, so the
     // check exercises the normalisations rather than restating them.
     Ok(match name {
@@ -168,7 +218,10 @@ fn eval_math(name: &str, inputs: &Value) -> Result<f64, String> {
         }
         "modified_phong_albedo_normal_incidence" => {
             let (kd, ks, e) = (get("kd")?, get("ks")?, get("n")?);
-            let q = hemisphere_integral(|ct| (rad::lambert_brdf(kd) + ks * rad::modified_phong_normalization(e) * ct.powf(e)) * ct);
+            let q = hemisphere_integral(|ct| {
+                (rad::lambert_brdf(kd) + ks * rad::modified_phong_normalization(e) * ct.powf(e))
+                    * ct
+            });
             check_close(q, rad::modified_phong_albedo_normal_incidence(kd, ks, e), name)?
         }
         n if n.starts_with("blinn_phong_ndf_normalization") => {
@@ -176,16 +229,26 @@ fn eval_math(name: &str, inputs: &Value) -> Result<f64, String> {
             hemisphere_integral(|ct| rad::modified_phong_normalization(e) * ct.powf(e) * ct)
         }
         "cone_solid_angle_30deg" => rad::cone_solid_angle(get("half_angle_deg")?.to_radians()),
-        "disk_projected_solid_angle_30deg" => rad::cone_projected_solid_angle(get("half_angle_deg")?.to_radians()),
+        "disk_projected_solid_angle_30deg" => {
+            rad::cone_projected_solid_angle(get("half_angle_deg")?.to_radians())
+        }
         "rectangle_solid_angle_on_axis" => {
             let (a, b, d) = (get("a")?, get("b")?, get("d")?);
             use glam::DVec3;
             let p = DVec3::new(0.0, 0.0, d);
-            let q = rad::quad_solid_angle(p, DVec3::new(-a, -b, 0.0), DVec3::new(a, -b, 0.0), DVec3::new(a, b, 0.0), DVec3::new(-a, b, 0.0));
+            let q = rad::quad_solid_angle(
+                p,
+                DVec3::new(-a, -b, 0.0),
+                DVec3::new(a, -b, 0.0),
+                DVec3::new(a, b, 0.0),
+                DVec3::new(-a, b, 0.0),
+            );
             check_close(q, rad::rectangle_solid_angle_on_axis(a, b, d), name)?
         }
         "point_light_flux" => rad::point_light_flux(get("I")?),
-        "point_light_irradiance_example" => rad::point_irradiance_at(get("I")?, get("r")?, get("theta_deg")?.to_radians()),
+        "point_light_irradiance_example" => {
+            rad::point_irradiance_at(get("I")?, get("r")?, get("theta_deg")?.to_radians())
+        }
         "lambertian_exitance" => rad::lambertian_exitance(get("L")?),
         other => return Err(format!("unknown math case '{other}'")),
     })

@@ -154,7 +154,10 @@ impl PluginNode {
         let desc = self.desc();
         self.props.check_all_used(&desc)?;
         if let Some(c) = self.children.iter().find(|c| !c.is_used()) {
-            return Err(LoadError::at(c.pos(), format!("unreferenced object {} in {desc}", c.node.desc())));
+            return Err(LoadError::at(
+                c.pos(),
+                format!("unreferenced object {} in {desc}", c.node.desc()),
+            ));
         }
         Ok(())
     }
@@ -222,13 +225,17 @@ impl Attrs {
     }
 
     pub fn require(&self, name: &str) -> Result<&Attr, LoadError> {
-        self.get(name).ok_or_else(|| self.error(format!("missing attribute '{name}' in <{}>", self.elem)))
+        self.get(name)
+            .ok_or_else(|| self.error(format!("missing attribute '{name}' in <{}>", self.elem)))
     }
 
     /// Refuses attributes outside `allowed`, at the attribute.
     pub fn allow(&self, allowed: &[&str]) -> Result<(), LoadError> {
         match self.list.iter().find(|a| !allowed.contains(&a.name.as_str())) {
-            Some(a) => Err(LoadError::at(&a.pos, format!("unexpected attribute '{}' in <{}>", a.name, self.elem))),
+            Some(a) => Err(LoadError::at(
+                &a.pos,
+                format!("unexpected attribute '{}' in <{}>", a.name, self.elem),
+            )),
             None => Ok(()),
         }
     }
@@ -237,7 +244,10 @@ impl Attrs {
     pub fn number(&self, a: &Attr, token: &str) -> Result<f64, LoadError> {
         match parse_f64(token) {
             Some(v) if v.is_finite() => Ok(v),
-            Some(_) => Err(LoadError::at(&a.pos, format!("NaN or infinite value \"{token}\" in '{}' of <{}>", a.name, self.elem))),
+            Some(_) => Err(LoadError::at(
+                &a.pos,
+                format!("NaN or infinite value \"{token}\" in '{}' of <{}>", a.name, self.elem),
+            )),
             None => Err(LoadError::at(
                 &a.pos,
                 format!("could not parse number \"{token}\" in '{}' of <{}>", a.name, self.elem),
@@ -249,8 +259,9 @@ impl Attrs {
 /// Parses the scene file at `path`. `defines` are `-D name=value` parameters: they override
 /// `<default>`s, and one the scene never uses as `$name` is an error (as in Mitsuba 3).
 pub fn parse_file(path: &Path, defines: &[(String, String)]) -> Result<SceneNode, LoadError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| LoadError::new(None, format!("cannot read scene file \"{}\": {e}", path.display())))?;
+    let text = std::fs::read_to_string(path).map_err(|e| {
+        LoadError::new(None, format!("cannot read scene file \"{}\": {e}", path.display()))
+    })?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut p = Parser::new(defines);
     p.include_stack.push(path.canonicalize().unwrap_or_else(|_| path.to_path_buf()));
@@ -259,12 +270,21 @@ pub fn parse_file(path: &Path, defines: &[(String, String)]) -> Result<SceneNode
 
 /// Parses a scene from a string (positions name the file `<string>`); `<include>`s are
 /// resolved relative to `base_dir`.
-pub fn parse_string(xml: &str, base_dir: &Path, defines: &[(String, String)]) -> Result<SceneNode, LoadError> {
+pub fn parse_string(
+    xml: &str,
+    base_dir: &Path,
+    defines: &[(String, String)],
+) -> Result<SceneNode, LoadError> {
     parse_string_named(xml, Path::new("<string>"), base_dir, defines)
 }
 
 /// [`parse_string`] with the name error positions should give the source.
-pub fn parse_string_named(xml: &str, name: &Path, base_dir: &Path, defines: &[(String, String)]) -> Result<SceneNode, LoadError> {
+pub fn parse_string_named(
+    xml: &str,
+    name: &Path,
+    base_dir: &Path,
+    defines: &[(String, String)],
+) -> Result<SceneNode, LoadError> {
     let mut p = Parser::new(defines);
     p.parse_root(Arc::new(name.to_path_buf()), xml, base_dir.to_path_buf())
 }
@@ -326,7 +346,11 @@ impl Builder {
         if let Some(prev) = self.names.get(name) {
             return Err(LoadError::at(
                 pos,
-                format!("property '{name}' is specified twice in {} (first at {})", self.desc, prev.line_col()),
+                format!(
+                    "property '{name}' is specified twice in {} (first at {})",
+                    self.desc,
+                    prev.line_col()
+                ),
             ));
         }
         self.names.insert(name.to_string(), pos.clone());
@@ -392,7 +416,10 @@ fn parse_version(s: &str) -> Option<[u32; 3]> {
 impl Parser {
     fn new(defines: &[(String, String)]) -> Self {
         Parser {
-            params: defines.iter().map(|(n, v)| Param { name: n.clone(), value: v.clone(), used: false }).collect(),
+            params: defines
+                .iter()
+                .map(|(n, v)| Param { name: n.clone(), value: v.clone(), used: false })
+                .collect(),
             define_names: defines.iter().map(|(n, _)| n.clone()).collect(),
             nodes: Vec::new(),
             ids: HashMap::new(),
@@ -417,8 +444,10 @@ impl Parser {
                     }
                 }
                 if let Some(i) = value.find('$') {
-                    let name: String =
-                        value[i + 1..].chars().take_while(|c| c.is_alphanumeric() || *c == '_').collect();
+                    let name: String = value[i + 1..]
+                        .chars()
+                        .take_while(|c| c.is_alphanumeric() || *c == '_')
+                        .collect();
                     return Err(LoadError::at(
                         &pos,
                         format!("undefined parameter '${name}' in attribute '{}' (declare it with <default name=\"{name}\" value=\"…\"/> or pass it as a define)", a.name()),
@@ -430,7 +459,12 @@ impl Parser {
         Ok(Attrs { elem: elem.to_string(), pos: src.pos(el.range().start), list })
     }
 
-    fn parse_root(&mut self, path: Arc<PathBuf>, text: &str, dir: PathBuf) -> Result<SceneNode, LoadError> {
+    fn parse_root(
+        &mut self,
+        path: Arc<PathBuf>,
+        text: &str,
+        dir: PathBuf,
+    ) -> Result<SceneNode, LoadError> {
         let doc = parse_doc(&path, text)?;
         let root = doc.root_element();
         let mut src = Src { path: path.clone(), doc: &doc, dir, upgrade: false };
@@ -476,7 +510,13 @@ impl Parser {
         }
     }
 
-    fn push(&mut self, b: Builder, id: Option<String>, name: Option<String>, pos: SourcePos) -> usize {
+    fn push(
+        &mut self,
+        b: Builder,
+        id: Option<String>,
+        name: Option<String>,
+        pos: SourcePos,
+    ) -> usize {
         self.nodes.push(Some(RawNode {
             tag: b.tag,
             plugin_type: b.plugin_type,
@@ -489,7 +529,13 @@ impl Parser {
         self.nodes.len() - 1
     }
 
-    fn parse_children(&mut self, src: &Src, el: roxmltree::Node, b: &mut Builder, depth: usize) -> Result<(), LoadError> {
+    fn parse_children(
+        &mut self,
+        src: &Src,
+        el: roxmltree::Node,
+        b: &mut Builder,
+        depth: usize,
+    ) -> Result<(), LoadError> {
         for ch in el.children() {
             if ch.is_element() {
                 self.parse_element(src, ch, b, depth)?;
@@ -519,7 +565,10 @@ impl Parser {
                 ));
             }
             if ch.is_text() && !ch.text().unwrap_or("").trim().is_empty() {
-                return Err(LoadError::at(&src.pos(ch.range().start), format!("unexpected text inside {what}")));
+                return Err(LoadError::at(
+                    &src.pos(ch.range().start),
+                    format!("unexpected text inside {what}"),
+                ));
             }
         }
         Ok(())
@@ -530,12 +579,18 @@ impl Parser {
         let mut name = a.value.clone();
         if src.upgrade {
             name = upgrade::camel_to_snake(&name);
-            if parent.tag == ObjectTag::Bsdf && parent.plugin_type == "diffuse" && name == "diffuse_reflectance" {
+            if parent.tag == ObjectTag::Bsdf
+                && parent.plugin_type == "diffuse"
+                && name == "diffuse_reflectance"
+            {
                 name = "reflectance".to_string();
             }
         }
         if name.starts_with('_') {
-            return Err(LoadError::at(&a.pos, format!("invalid name \"{name}\": leading underscores are reserved")));
+            return Err(LoadError::at(
+                &a.pos,
+                format!("invalid name \"{name}\": leading underscores are reserved"),
+            ));
         }
         if name.is_empty() {
             return Err(LoadError::at(&a.pos, "empty 'name' attribute"));
@@ -543,7 +598,13 @@ impl Parser {
         Ok(name)
     }
 
-    fn parse_element(&mut self, src: &Src, el: roxmltree::Node, parent: &mut Builder, depth: usize) -> Result<(), LoadError> {
+    fn parse_element(
+        &mut self,
+        src: &Src,
+        el: roxmltree::Node,
+        parent: &mut Builder,
+        depth: usize,
+    ) -> Result<(), LoadError> {
         let mut tag = el.tag_name().name().to_string();
         if src.upgrade && tag == "lookAt" {
             tag = "lookat".to_string();
@@ -563,9 +624,8 @@ impl Parser {
             }
             "spectrum" => self.parse_object(src, el, &attrs, ObjectTag::Spectrum, parent, depth),
             "transform" => self.parse_transform(src, el, &attrs, parent),
-            "translate" | "rotate" | "scale" | "matrix" | "lookat" => {
-                Err(attrs.error(format!("transform operation <{tag}> can only occur inside <transform>")))
-            }
+            "translate" | "rotate" | "scale" | "matrix" | "lookat" => Err(attrs
+                .error(format!("transform operation <{tag}> can only occur inside <transform>"))),
             "ref" => {
                 self.no_content(src, el, "<ref>")?;
                 attrs.allow(&["id", "name"])?;
@@ -588,7 +648,9 @@ impl Parser {
                 let name = attrs.require("name")?.value.clone();
                 let value = attrs.require("value")?.value.clone();
                 if name.is_empty() || name.contains(',') || name.contains('$') {
-                    return Err(attrs.error(format!("invalid parameter name \"{name}\" in <default>")));
+                    return Err(
+                        attrs.error(format!("invalid parameter name \"{name}\" in <default>"))
+                    );
                 }
                 if !self.params.iter().any(|p| p.name == name) {
                     // A <default> counts as used: only unused defines are errors.
@@ -606,7 +668,10 @@ impl Parser {
                 let target = attrs.require("id")?.value.clone();
                 let alias = attrs.require("as")?.value.clone();
                 if let Some((_, prev)) = self.ids.get(&alias) {
-                    return Err(attrs.error(format!("duplicate id \"{alias}\" (first defined at {})", prev.line_col())));
+                    return Err(attrs.error(format!(
+                        "duplicate id \"{alias}\" (first defined at {})",
+                        prev.line_col()
+                    )));
                 }
                 if !self.ids.contains_key(&target) {
                     return Err(attrs.error(format!("<alias> refers to unknown id \"{target}\"")));
@@ -640,9 +705,14 @@ impl Parser {
         let id = match attrs.get("id") {
             Some(a) if src.upgrade => Some(upgrade::upgrade_id(&a.value)),
             Some(a) if a.value.starts_with('_') => {
-                return Err(LoadError::at(&a.pos, format!("invalid id \"{}\": leading underscores are reserved", a.value)))
+                return Err(LoadError::at(
+                    &a.pos,
+                    format!("invalid id \"{}\": leading underscores are reserved", a.value),
+                ))
             }
-            Some(a) if a.value.is_empty() => return Err(LoadError::at(&a.pos, "empty 'id' attribute")),
+            Some(a) if a.value.is_empty() => {
+                return Err(LoadError::at(&a.pos, "empty 'id' attribute"))
+            }
             Some(a) => Some(a.value.clone()),
             None => None,
         };
@@ -674,7 +744,13 @@ impl Parser {
         Ok(())
     }
 
-    fn parse_include(&mut self, src: &Src, attrs: &Attrs, parent: &mut Builder, depth: usize) -> Result<(), LoadError> {
+    fn parse_include(
+        &mut self,
+        src: &Src,
+        attrs: &Attrs,
+        parent: &mut Builder,
+        depth: usize,
+    ) -> Result<(), LoadError> {
         attrs.allow(&["filename"])?;
         let fname = &attrs.require("filename")?.value;
         let path = src.dir.join(fname);
@@ -683,21 +759,34 @@ impl Parser {
         }
         let canon = path.canonicalize().unwrap_or_else(|_| path.clone());
         if self.include_stack.contains(&canon) {
-            return Err(attrs.error(format!("include cycle: \"{}\" includes itself (directly or indirectly)", path.display())));
+            return Err(attrs.error(format!(
+                "include cycle: \"{}\" includes itself (directly or indirectly)",
+                path.display()
+            )));
         }
         if self.include_stack.len() > MAX_INCLUDE_DEPTH {
-            return Err(attrs.error(format!("<include> nesting exceeds the limit of {MAX_INCLUDE_DEPTH}")));
+            return Err(
+                attrs.error(format!("<include> nesting exceeds the limit of {MAX_INCLUDE_DEPTH}"))
+            );
         }
-        let text = std::fs::read_to_string(&path)
-            .map_err(|e| attrs.error(format!("cannot read included file \"{}\": {e}", path.display())))?;
+        let text = std::fs::read_to_string(&path).map_err(|e| {
+            attrs.error(format!("cannot read included file \"{}\": {e}", path.display()))
+        })?;
         let ipath = Arc::new(path.clone());
         let doc = parse_doc(&ipath, &text)?;
         let root = doc.root_element();
-        let mut isrc = Src { path: ipath, doc: &doc, dir: path.parent().map(Path::to_path_buf).unwrap_or_default(), upgrade: false };
+        let mut isrc = Src {
+            path: ipath,
+            doc: &doc,
+            dir: path.parent().map(Path::to_path_buf).unwrap_or_default(),
+            upgrade: false,
+        };
         let rname = root.tag_name().name().to_string();
         let rattrs = self.attrs(&isrc, root, &rname)?;
         if rname != "scene" {
-            return Err(rattrs.error(format!("an included file must have a <scene> root element, not <{rname}>")));
+            return Err(rattrs.error(format!(
+                "an included file must have a <scene> root element, not <{rname}>"
+            )));
         }
         rattrs.allow(&["version"])?;
         isrc.upgrade = self.scene_version(&rattrs, false)?;
@@ -707,7 +796,13 @@ impl Parser {
         r
     }
 
-    fn parse_transform(&mut self, src: &Src, el: roxmltree::Node, attrs: &Attrs, parent: &mut Builder) -> Result<(), LoadError> {
+    fn parse_transform(
+        &mut self,
+        src: &Src,
+        el: roxmltree::Node,
+        attrs: &Attrs,
+        parent: &mut Builder,
+    ) -> Result<(), LoadError> {
         attrs.allow(&["name"])?;
         let name = self.slot_name(src, attrs.require("name")?, parent)?;
         parent.claim(&name, &attrs.pos)?;
@@ -715,7 +810,10 @@ impl Parser {
         for ch in el.children() {
             if ch.is_text() {
                 if !ch.text().unwrap_or("").trim().is_empty() {
-                    return Err(LoadError::at(&src.pos(ch.range().start), "unexpected text inside <transform>"));
+                    return Err(LoadError::at(
+                        &src.pos(ch.range().start),
+                        "unexpected text inside <transform>",
+                    ));
                 }
                 continue;
             }
@@ -742,7 +840,12 @@ impl Parser {
         parent.props.insert(name, PropertyValue::Transform(acc), attrs.pos.clone())
     }
 
-    fn parse_property(&mut self, src: &Src, attrs: &Attrs, parent: &mut Builder) -> Result<(), LoadError> {
+    fn parse_property(
+        &mut self,
+        src: &Src,
+        attrs: &Attrs,
+        parent: &mut Builder,
+    ) -> Result<(), LoadError> {
         let tag = attrs.elem.as_str();
         let allowed: &[&str] = match tag {
             "point" | "vector" => &["name", "value", "x", "y", "z"],
@@ -754,7 +857,13 @@ impl Parser {
         parent.claim(&name, &attrs.pos)?;
         let num = |a: &Attr, t: &str| -> Result<f64, LoadError> {
             parse_f64(t).ok_or_else(|| {
-                LoadError::at(&a.pos, format!("could not parse floating point value \"{}\" in <{tag} name=\"{name}\">", t.trim()))
+                LoadError::at(
+                    &a.pos,
+                    format!(
+                        "could not parse floating point value \"{}\" in <{tag} name=\"{name}\">",
+                        t.trim()
+                    ),
+                )
             })
         };
         let value = match tag {
@@ -766,7 +875,10 @@ impl Parser {
                     _ => {
                         return Err(LoadError::at(
                             &a.pos,
-                            format!("could not parse boolean value \"{}\" (must be \"true\" or \"false\")", a.value),
+                            format!(
+                            "could not parse boolean value \"{}\" (must be \"true\" or \"false\")",
+                            a.value
+                        ),
                         ))
                     }
                 }
@@ -776,7 +888,13 @@ impl Parser {
                 match a.value.trim().parse::<i64>() {
                     Ok(i) => PropertyValue::Int(i),
                     Err(_) => {
-                        return Err(LoadError::at(&a.pos, format!("could not parse integer value \"{}\" in <integer name=\"{name}\">", a.value)))
+                        return Err(LoadError::at(
+                            &a.pos,
+                            format!(
+                                "could not parse integer value \"{}\" in <integer name=\"{name}\">",
+                                a.value
+                            ),
+                        ))
                     }
                 }
             }
@@ -787,15 +905,25 @@ impl Parser {
             "string" => PropertyValue::String(attrs.require("value")?.value.clone()),
             "point" | "vector" => {
                 let v = if let Some(a) = attrs.get("value") {
-                    if attrs.get("x").is_some() || attrs.get("y").is_some() || attrs.get("z").is_some() {
-                        return Err(attrs.error(format!("<{tag}> can't mix 'value' with 'x'/'y'/'z' attributes")));
+                    if attrs.get("x").is_some()
+                        || attrs.get("y").is_some()
+                        || attrs.get("z").is_some()
+                    {
+                        return Err(attrs.error(format!(
+                            "<{tag}> can't mix 'value' with 'x'/'y'/'z' attributes"
+                        )));
                     }
                     let toks = tokenize(&a.value);
                     let n = toks.iter().map(|t| num(a, t)).collect::<Result<Vec<_>, _>>()?;
                     match n.len() {
                         1 => Vec3::splat(n[0] as f32),
                         3 => Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32),
-                        k => return Err(LoadError::at(&a.pos, format!("'value' of <{tag}> must have 1 or 3 numbers, got {k}"))),
+                        k => {
+                            return Err(LoadError::at(
+                                &a.pos,
+                                format!("'value' of <{tag}> must have 1 or 3 numbers, got {k}"),
+                            ))
+                        }
                     }
                 } else {
                     // Mitsuba requires all of x, y and z.
@@ -819,27 +947,46 @@ impl Parser {
                 match n.len() {
                     1 => PropertyValue::Rgb(Vec3::splat(n[0] as f32)),
                     3 => PropertyValue::Rgb(Vec3::new(n[0] as f32, n[1] as f32, n[2] as f32)),
-                    k => return Err(LoadError::at(&a.pos, format!("<rgb> needs one or three values, got {k}"))),
+                    k => {
+                        return Err(LoadError::at(
+                            &a.pos,
+                            format!("<rgb> needs one or three values, got {k}"),
+                        ))
+                    }
                 }
             }
-            "spectrum" => PropertyValue::Spectrum(self.parse_spectrum(attrs, &name, parent.tag == ObjectTag::Emitter)?),
+            "spectrum" => PropertyValue::Spectrum(self.parse_spectrum(
+                attrs,
+                &name,
+                parent.tag == ObjectTag::Emitter,
+            )?),
             _ => return Err(attrs.error(format!("unexpected tag <{tag}>"))),
         };
         parent.props.insert(name, value, attrs.pos.clone())
     }
 
-    fn parse_spectrum(&self, attrs: &Attrs, name: &str, within_emitter: bool) -> Result<SpectrumValue, LoadError> {
+    fn parse_spectrum(
+        &self,
+        attrs: &Attrs,
+        name: &str,
+        within_emitter: bool,
+    ) -> Result<SpectrumValue, LoadError> {
         match (attrs.get("value"), attrs.get("filename")) {
-            (Some(_), Some(_)) | (None, None) => {
-                Err(attrs.error("<spectrum> needs exactly one of the attributes 'value' and 'filename'"))
-            }
-            (None, Some(a)) => Err(LoadError::at(&a.pos, "<spectrum filename=…> (.spd files) is not supported yet")),
+            (Some(_), Some(_)) | (None, None) => Err(attrs
+                .error("<spectrum> needs exactly one of the attributes 'value' and 'filename'")),
+            (None, Some(a)) => Err(LoadError::at(
+                &a.pos,
+                "<spectrum filename=…> (.spd files) is not supported yet",
+            )),
             (Some(a), None) => {
                 let role = SpectrumRole::of(name, within_emitter);
                 let toks = tokenize(&a.value);
                 if toks.len() == 1 && !toks[0].contains(':') {
                     let v = parse_f64(toks[0]).ok_or_else(|| {
-                        LoadError::at(&a.pos, format!("could not parse constant spectrum \"{}\"", toks[0]))
+                        LoadError::at(
+                            &a.pos,
+                            format!("could not parse constant spectrum \"{}\"", toks[0]),
+                        )
                     })?;
                     return Ok(match spectrum::uniform_to_rgb(v, role) {
                         Some(c) => SpectrumValue::Rgb(c),
@@ -855,7 +1002,9 @@ impl Parser {
                         _ => {
                             return Err(LoadError::at(
                                 &a.pos,
-                                format!("invalid spectrum entry \"{t}\" (expected wavelength:value pairs)"),
+                                format!(
+                                "invalid spectrum entry \"{t}\" (expected wavelength:value pairs)"
+                            ),
                             ))
                         }
                     };
@@ -863,17 +1012,28 @@ impl Parser {
                         (Some(w), Some(v)) if w.is_finite() && v.is_finite() => {
                             if let Some(&prev) = wl.last() {
                                 if w <= prev {
-                                    return Err(LoadError::at(&a.pos, "spectrum wavelengths must be strictly increasing"));
+                                    return Err(LoadError::at(
+                                        &a.pos,
+                                        "spectrum wavelengths must be strictly increasing",
+                                    ));
                                 }
                             }
                             wl.push(w);
                             vals.push(v);
                         }
-                        _ => return Err(LoadError::at(&a.pos, format!("could not parse wavelength:value pair \"{t}\""))),
+                        _ => {
+                            return Err(LoadError::at(
+                                &a.pos,
+                                format!("could not parse wavelength:value pair \"{t}\""),
+                            ))
+                        }
                     }
                 }
                 if wl.len() < 2 {
-                    return Err(LoadError::at(&a.pos, "a spectrum needs at least two wavelength:value pairs"));
+                    return Err(LoadError::at(
+                        &a.pos,
+                        "a spectrum needs at least two wavelength:value pairs",
+                    ));
                 }
                 Ok(SpectrumValue::Rgb(spectrum::wavelength_list_to_rgb(&wl, &vals, role)))
             }
@@ -922,21 +1082,35 @@ impl Parser {
         }
         if visiting[idx] {
             let id = self.nodes[idx].as_ref().and_then(|n| n.id.clone()).unwrap_or_default();
-            return Err(LoadError::new(via.cloned(), format!("reference cycle: \"{id}\" (directly or indirectly) contains itself")));
+            return Err(LoadError::new(
+                via.cloned(),
+                format!("reference cycle: \"{id}\" (directly or indirectly) contains itself"),
+            ));
         }
         visiting[idx] = true;
-        let raw_children = std::mem::take(&mut self.nodes[idx].as_mut().expect("node is built once").children);
+        let raw_children =
+            std::mem::take(&mut self.nodes[idx].as_mut().expect("node is built once").children);
         let mut children = Vec::with_capacity(raw_children.len());
         for rc in raw_children {
             match rc {
                 RawChild::Nested(i) => {
                     let node = self.build(i, None, built, visiting)?;
-                    children.push(Child { name: node.name.clone(), node, ref_pos: None, used: AtomicBool::new(false) });
+                    children.push(Child {
+                        name: node.name.clone(),
+                        node,
+                        ref_pos: None,
+                        used: AtomicBool::new(false),
+                    });
                 }
                 RawChild::Ref { id, name, pos } => {
                     let target = self.lookup(&id, Some(&pos))?;
                     let node = self.build(target, Some(&pos), built, visiting)?;
-                    children.push(Child { name, node, ref_pos: Some(pos), used: AtomicBool::new(false) });
+                    children.push(Child {
+                        name,
+                        node,
+                        ref_pos: Some(pos),
+                        used: AtomicBool::new(false),
+                    });
                 }
             }
         }
@@ -979,7 +1153,8 @@ fn upgrade_uv(b: &mut Builder) -> Result<(), LoadError> {
         t = t.then(&Transform::translate(off));
     }
     if scale != Vec3::ONE {
-        let s = Transform::scale(scale).map_err(|_| LoadError::at(&pos, "uscale/vscale of zero makes to_uv singular"))?;
+        let s = Transform::scale(scale)
+            .map_err(|_| LoadError::at(&pos, "uscale/vscale of zero makes to_uv singular"))?;
         t = t.then(&s);
     }
     b.props.insert("to_uv", PropertyValue::Transform(t), pos)

@@ -39,7 +39,10 @@ fn branching_keeps_the_expectation_and_lowers_the_noise() {
     let (one, s1) = mean_and_error(1, 1);
     let (three, s3) = mean_and_error(3, 2);
     let tol = 5.0 * (s1 * s1 + s3 * s3).sqrt();
-    assert!(one > 0.0 && (one - three).abs() <= tol, "1 branch {one} ± {s1}, 3 branches {three} ± {s3}");
+    assert!(
+        one > 0.0 && (one - three).abs() <= tol,
+        "1 branch {one} ± {s1}, 3 branches {three} ± {s3}"
+    );
     // Most of this scene's noise comes after the first hit (indirect light, and next-event
     // estimation of two lights chosen at random), so three branches must cut the standard
     // error clearly; with the branches ignored the two would agree within their own noise.
@@ -51,13 +54,23 @@ fn branching_keeps_the_expectation_and_lowers_the_noise() {
 /// light and `max_depth` 2: next-event estimation is exact and BSDF samples cannot hit a point).
 #[test]
 fn the_pilot_splits_only_where_it_pays() {
-    let s = steradian_mitsuba::load_string(&scene(""), Path::new("branches.xml"), Path::new("."), &[]).unwrap();
-    assert!(matches!(&s.integrator, Integrator::Path(p) if p.branches == Branches::Auto), "{:?}", s.integrator);
+    let s =
+        steradian_mitsuba::load_string(&scene(""), Path::new("branches.xml"), Path::new("."), &[])
+            .unwrap();
+    assert!(
+        matches!(&s.integrator, Integrator::Path(p) if p.branches == Branches::Auto),
+        "{:?}",
+        s.integrator
+    );
     // a 24 × 24 film: 1024 samples per pixel give the pilot 4 stratified camera samples per
     // replicate (its work is at most 1/4 of a one-branch render's)
     let out = render(&s, &RenderOptions { spp: Some(1024), ..Default::default() }).unwrap();
     let pilot = out.pilot.expect("a pilot ran");
-    assert!(out.branches.unwrap() >= 4 && pilot.var_branch > 10.0 * pilot.var_first, "{:?} {pilot:?}", out.branches);
+    assert!(
+        out.branches.unwrap() >= 4 && pilot.var_branch > 10.0 * pilot.var_first,
+        "{:?} {pilot:?}",
+        out.branches
+    );
 
     let point = r#"<scene version="3.0.0">
         <integrator type="path"><integer name="max_depth" value="2"/></integrator>
@@ -67,12 +80,17 @@ fn the_pilot_splits_only_where_it_pays() {
         <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><bsdf type="diffuse"/></shape>
         <emitter type="point"><point name="position" x="0.5" y="0" z="1"/><rgb name="intensity" value="5"/></emitter>
         </scene>"#;
-    let s = steradian_mitsuba::load_string(point, Path::new("point.xml"), Path::new("."), &[]).unwrap();
+    let s =
+        steradian_mitsuba::load_string(point, Path::new("point.xml"), Path::new("."), &[]).unwrap();
     let out = render(&s, &RenderOptions { spp: Some(256), ..Default::default() }).unwrap();
     let pilot = out.pilot.expect("a pilot ran");
     assert_eq!(out.branches, Some(1), "{pilot:?}");
     // every candidate count gives the same pixels: the branches add nothing but work
-    assert!(pilot.variance.iter().all(|&v| v == pilot.variance[0]) && pilot.var_branch.abs() <= 1e-9 * pilot.var_first, "{pilot:?}");
+    assert!(
+        pilot.variance.iter().all(|&v| v == pilot.variance[0])
+            && pilot.var_branch.abs() <= 1e-9 * pilot.var_first,
+        "{pilot:?}"
+    );
 
     // too small a render for a pilot: the default count
     let out = render(&s, &RenderOptions { spp: Some(64), ..Default::default() }).unwrap();
@@ -82,13 +100,28 @@ fn the_pilot_splits_only_where_it_pays() {
 #[test]
 fn branches_out_of_range_are_errors_at_the_property() {
     for bad in [0, -2, 65] {
-        let e = steradian_mitsuba::load_string(&scene(&branches_param(bad)), Path::new("branches.xml"), Path::new("."), &[])
-            .unwrap_err()
-            .to_string();
-        assert!(e.contains("branches.xml:2:") && e.contains("branches must be between 1 and 64") && e.contains(&bad.to_string()), "{e}");
-    }
-    let e = steradian_mitsuba::load_string(&scene(r#"<float name="branches" value="2.5"/>"#), Path::new("branches.xml"), Path::new("."), &[])
+        let e = steradian_mitsuba::load_string(
+            &scene(&branches_param(bad)),
+            Path::new("branches.xml"),
+            Path::new("."),
+            &[],
+        )
         .unwrap_err()
         .to_string();
+        assert!(
+            e.contains("branches.xml:2:")
+                && e.contains("branches must be between 1 and 64")
+                && e.contains(&bad.to_string()),
+            "{e}"
+        );
+    }
+    let e = steradian_mitsuba::load_string(
+        &scene(r#"<float name="branches" value="2.5"/>"#),
+        Path::new("branches.xml"),
+        Path::new("."),
+        &[],
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("branches.xml:2:") && e.contains("branches"), "{e}");
 }

@@ -9,7 +9,8 @@ fn err(xml: &str) -> LoadError {
 }
 
 fn err_with(xml: &str, defines: &[(&str, &str)]) -> LoadError {
-    let d: Vec<(String, String)> = defines.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect();
+    let d: Vec<(String, String)> =
+        defines.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect();
     match parse_string(xml, Path::new("."), &d) {
         Ok(_) => panic!("expected an error for:\n{xml}"),
         Err(e) => e,
@@ -31,18 +32,33 @@ fn missing_version() {
 
 #[test]
 fn wrong_version_string() {
-    check(&err("<scene version=\"3.0\">\n</scene>"), 1, 8, "could not parse version number \"3.0\"");
+    check(
+        &err("<scene version=\"3.0\">\n</scene>"),
+        1,
+        8,
+        "could not parse version number \"3.0\"",
+    );
     check(&err("<scene version=\"three\"/>"), 1, 8, "could not parse version number");
 }
 
 #[test]
 fn unknown_tag() {
-    check(&err("<scene version=\"3.0.0\">\n  <shap type=\"sphere\"/>\n</scene>"), 2, 3, "unexpected tag <shap>");
+    check(
+        &err("<scene version=\"3.0.0\">\n  <shap type=\"sphere\"/>\n</scene>"),
+        2,
+        3,
+        "unexpected tag <shap>",
+    );
 }
 
 #[test]
 fn unknown_plugin_attribute() {
-    check(&err("<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\" colour=\"red\"/>\n</scene>"), 2, 22, "unexpected attribute 'colour' in <bsdf>");
+    check(
+        &err("<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\" colour=\"red\"/>\n</scene>"),
+        2,
+        22,
+        "unexpected attribute 'colour' in <bsdf>",
+    );
 }
 
 #[test]
@@ -51,7 +67,12 @@ fn float_given_for_integer() {
     let s = parse_string(xml, Path::new("."), &[]).unwrap();
     let integ = &s.children_of(ObjectTag::Integrator)[0].node;
     let e = integ.props.get_int("max_depth").unwrap_err();
-    check(&e, 3, 5, "property 'max_depth' of <integrator type=\"path\"> must be integer, got float");
+    check(
+        &e,
+        3,
+        5,
+        "property 'max_depth' of <integrator type=\"path\"> must be integer, got float",
+    );
 }
 
 #[test]
@@ -132,12 +153,18 @@ fn missing_name() {
 #[test]
 fn duplicate_property() {
     let xml = "<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\">\n<rgb name=\"reflectance\" value=\"0.5\"/>\n<texture name=\"reflectance\" type=\"checkerboard\"/>\n</bsdf>\n</scene>";
-    check(&err(xml), 4, 1, "property 'reflectance' is specified twice in <bsdf type=\"diffuse\"> (first at 3:1)");
+    check(
+        &err(xml),
+        4,
+        1,
+        "property 'reflectance' is specified twice in <bsdf type=\"diffuse\"> (first at 3:1)",
+    );
 }
 
 #[test]
 fn include_of_missing_file() {
-    let xml = "<scene version=\"3.0.0\">\n\n   <include filename=\"does/not/exist.xml\"/>\n</scene>";
+    let xml =
+        "<scene version=\"3.0.0\">\n\n   <include filename=\"does/not/exist.xml\"/>\n</scene>";
     check(&err(xml), 3, 4, "included file \"./does/not/exist.xml\" not found");
 }
 
@@ -145,7 +172,11 @@ fn include_of_missing_file() {
 fn include_cycle() {
     let dir = std::env::temp_dir().join(format!("steradian-mitsuba-cycle-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("a.xml"), "<scene version=\"3.0.0\">\n  <include filename=\"b.xml\"/>\n</scene>").unwrap();
+    std::fs::write(
+        dir.join("a.xml"),
+        "<scene version=\"3.0.0\">\n  <include filename=\"b.xml\"/>\n</scene>",
+    )
+    .unwrap();
     std::fs::write(dir.join("b.xml"), "<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\"/>\n<include filename=\"a.xml\"/>\n</scene>").unwrap();
     let e = parse_file(&dir.join("a.xml"), &[]).unwrap_err();
     let pos = e.pos.clone().unwrap();
@@ -170,7 +201,12 @@ fn unreferenced_property() {
     let s = parse_string(xml, Path::new("."), &[]).unwrap();
     let b = &s.children[0].node;
     b.props.get_spectrum("reflectance").unwrap();
-    check(&b.check_all_used().unwrap_err(), 4, 3, "unreferenced property 'foo' in <bsdf type=\"diffuse\">");
+    check(
+        &b.check_all_used().unwrap_err(),
+        4,
+        3,
+        "unreferenced property 'foo' in <bsdf type=\"diffuse\">",
+    );
     b.props.get_float("foo").unwrap();
     b.check_all_used().unwrap();
 }
@@ -180,12 +216,22 @@ fn unreferenced_child_object() {
     let xml = "<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\" id=\"d\"/>\n<shape type=\"sphere\">\n <ref id=\"d\"/>\n</shape>\n</scene>";
     let s = parse_string(xml, Path::new("."), &[]).unwrap();
     let shape = &s.children[1].node;
-    check(&shape.check_all_used().unwrap_err(), 4, 2, "unreferenced object <bsdf type=\"diffuse\" id=\"d\"> in <shape type=\"sphere\">");
+    check(
+        &shape.check_all_used().unwrap_err(),
+        4,
+        2,
+        "unreferenced object <bsdf type=\"diffuse\" id=\"d\"> in <shape type=\"sphere\">",
+    );
 }
 
 #[test]
 fn structural_errors() {
-    check(&err("<scene version=\"3.0.0\">\n<translate x=\"1\"/>\n</scene>"), 2, 1, "can only occur inside <transform>");
+    check(
+        &err("<scene version=\"3.0.0\">\n<translate x=\"1\"/>\n</scene>"),
+        2,
+        1,
+        "can only occur inside <transform>",
+    );
     check(
         &err("<scene version=\"3.0.0\">\n<shape type=\"cube\"><transform name=\"to_world\">\n<float name=\"x\" value=\"1\"/></transform></shape>\n</scene>"),
         3,
@@ -193,10 +239,25 @@ fn structural_errors() {
         "can only contain transform operations",
     );
     check(&err("<scene version=\"3.0.0\">\n<float name=\"x\" value=\"1\"><rgb name=\"y\" value=\"1\"/></float>\n</scene>"), 2, 27, "<rgb> cannot occur inside <float>");
-    check(&err("<scene version=\"3.0.0\">\n<bsdf id=\"x\"/>\n</scene>"), 2, 1, "missing attribute 'type' in <bsdf>");
+    check(
+        &err("<scene version=\"3.0.0\">\n<bsdf id=\"x\"/>\n</scene>"),
+        2,
+        1,
+        "missing attribute 'type' in <bsdf>",
+    );
     check(&err("<bsdf type=\"diffuse\" version=\"3.0.0\"/>"), 1, 1, "root element must be <scene>");
-    check(&err("<scene version=\"3.0.0\">\n<point name=\"p\" x=\"1\" y=\"2\"/>\n</scene>"), 2, 1, "missing attribute 'z' in <point>");
-    check(&err("<scene version=\"3.0.0\">\n<rgb name=\"c\" value=\"1 2\"/>\n</scene>"), 2, 15, "one or three values, got 2");
+    check(
+        &err("<scene version=\"3.0.0\">\n<point name=\"p\" x=\"1\" y=\"2\"/>\n</scene>"),
+        2,
+        1,
+        "missing attribute 'z' in <point>",
+    );
+    check(
+        &err("<scene version=\"3.0.0\">\n<rgb name=\"c\" value=\"1 2\"/>\n</scene>"),
+        2,
+        15,
+        "one or three values, got 2",
+    );
     check(&err("<scene version=\"3.0.0\">\n<rotate/>\n</scene>"), 2, 1, "inside <transform>");
     check(&err("<scene version=\"3.0.0\">\nhello\n</scene>"), 1, 24, "unexpected text \"hello\"");
     check(

@@ -44,7 +44,8 @@ const SPHERES: &str = r#"
             <emitter type="area"><rgb name="radiance" value="5"/></emitter></shape>"#;
 
 fn load(xml: &str) -> Scene {
-    steradian_mitsuba::load_string(xml, Path::new("last_vertex.xml"), Path::new("."), &[]).unwrap_or_else(|e| panic!("{e}"))
+    steradian_mitsuba::load_string(xml, Path::new("last_vertex.xml"), Path::new("."), &[])
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The image mean (red channel) and its standard error with the given last-vertex estimator.
@@ -61,10 +62,16 @@ fn light_only_last_vertex_keeps_the_expectation() {
         let (short, s_short) = mean_and_error(load(&xml), LastVertex::LightOnlyWhereBounded, 1);
         let (mis, s_mis) = mean_and_error(load(&xml), LastVertex::Mis, 2);
         let tol = 5.0 * (s_short * s_short + s_mis * s_mis).sqrt();
-        assert!(mis > 0.0 && (short - mis).abs() <= tol, "max_depth {max_depth}: light only {short} ± {s_short}, MIS {mis} ± {s_mis}");
+        assert!(
+            mis > 0.0 && (short - mis).abs() <= tol,
+            "max_depth {max_depth}: light only {short} ± {s_short}, MIS {mis} ± {s_mis}"
+        );
         // the same seed: the estimators must differ, or the shortcut was never taken
         let (same_seed, _) = mean_and_error(load(&xml), LastVertex::Mis, 1);
-        assert_ne!(short, same_seed, "max_depth {max_depth}: the last vertex never skipped its BSDF sample");
+        assert_ne!(
+            short, same_seed,
+            "max_depth {max_depth}: the last vertex never skipped its BSDF sample"
+        );
     }
 }
 
@@ -91,6 +98,9 @@ fn light_sampling_suffices_only_where_bounded() {
     let s = load(&scene_xml(3, r#"<emitter type="constant"/>"#));
     assert!(!s.light_sampling_suffices(&s.bsdfs[s.bindings[0].bsdf as usize], open));
     // delta lights only: no ray can find light, at any BSDF
-    let s = load(&scene_xml(3, r#"<emitter type="point"><point name="position" x="0" y="0" z="1"/></emitter>"#));
+    let s = load(&scene_xml(
+        3,
+        r#"<emitter type="point"><point name="position" x="0" y="0" z="1"/></emitter>"#,
+    ));
     assert!(s.light_sampling_suffices(&s.bsdfs[s.bindings[1].bsdf as usize], open));
 }

@@ -35,6 +35,13 @@ fn power_selection_keeps_the_expectation() {
 
 #[test]
 fn unknown_rule_is_an_error() {
-    let e = steradian_mitsuba::load_string(&scene("brightest"), Path::new("lights.xml"), Path::new("."), &[]).unwrap_err().to_string();
+    let e = steradian_mitsuba::load_string(
+        &scene("brightest"),
+        Path::new("lights.xml"),
+        Path::new("."),
+        &[],
+    )
+    .unwrap_err()
+    .to_string();
     assert!(e.contains("lights.xml:2:") && e.contains("uniform") && e.contains("power"), "{e}");
 }

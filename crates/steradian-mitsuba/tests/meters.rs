@@ -8,9 +8,20 @@ use steradian::radiometry;
 
 /// Renders sensor `id` of an inline scene; returns (value, stderr) of the single pixel.
 fn measure(xml: &str, id: &str, spp: u32, seed: u64) -> ([f64; 3], [f64; 3]) {
-    let scene = steradian_mitsuba::load_string(xml, Path::new("meter.xml"), Path::new("."), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let scene = steradian_mitsuba::load_string(xml, Path::new("meter.xml"), Path::new("."), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
     let sensor = scene.sensor_index(id).unwrap();
-    let out = render(&scene, &RenderOptions { spp: Some(spp), seed: Some(seed), sensor: Some(sensor), threads: Some(1), ..Default::default() }).unwrap();
+    let out = render(
+        &scene,
+        &RenderOptions {
+            spp: Some(spp),
+            seed: Some(seed),
+            sensor: Some(sensor),
+            threads: Some(1),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let (v, e) = (out.film.develop().get(0, 0), out.film.develop_stderr().get(0, 0));
     ([v.x as f64, v.y as f64, v.z as f64], [e.x as f64, e.y as f64, e.z as f64])
 }
@@ -39,7 +50,11 @@ fn normal() -> glam::DVec3 {
 }
 
 fn assert_rel(a: f64, b: f64, tol: f64, what: &str) {
-    assert!((a - b).abs() <= tol * b.abs(), "{what}: {a} vs {b} (rel err {:.2e})", (a - b).abs() / b.abs());
+    assert!(
+        (a - b).abs() <= tol * b.abs(),
+        "{what}: {a} vs {b} (rel err {:.2e})",
+        (a - b).abs() / b.abs()
+    );
 }
 
 #[test]
@@ -65,14 +80,21 @@ fn spot_light_on_its_axis_is_exact() {
              <transform name="to_world"><lookat origin="0, 0, 3" target="0, 0, 0" up="0, 1, 0"/></transform></emitter>"#,
     );
     let (v, _) = measure(&xml, "meter", 64, 2);
-    let h = radiometry::point_irradiance(5.0, glam::DVec3::new(0.0, 0.0, 3.0), glam::DVec3::ZERO, normal());
+    let h = radiometry::point_irradiance(
+        5.0,
+        glam::DVec3::new(0.0, 0.0, 3.0),
+        glam::DVec3::ZERO,
+        normal(),
+    );
     assert_rel(v[0], h, 1e-4, "spot");
 }
 
 #[test]
 fn directional_light_on_a_tilted_meter_is_exact() {
     // light travelling along −z: H⊥ cos θ with cos θ = n·(+z) = cos 30°
-    let xml = tilted_meter(r#"<emitter type="directional"><vector name="direction" value="0, 0, -1"/><rgb name="irradiance" value="2, 3, 4"/></emitter>"#);
+    let xml = tilted_meter(
+        r#"<emitter type="directional"><vector name="direction" value="0, 0, -1"/><rgb name="irradiance" value="2, 3, 4"/></emitter>"#,
+    );
     let (v, _) = measure(&xml, "meter", 64, 3);
     for (c, h) in [2.0, 3.0, 4.0].iter().enumerate() {
         assert_rel(v[c], h * 30f64.to_radians().cos(), 1e-4, "directional");
@@ -99,11 +121,26 @@ fn a_point_light_and_an_area_light_add() {
     let (only_area, _) = measure(&meter(area), "m", 1 << 16, 4);
     let (only_point, _) = measure(&meter(point), "m", 64, 4);
     let h_area = radiometry::disk_on_axis_irradiance(1.5, 0.5, 1.0);
-    let h_point = radiometry::point_irradiance(8.0, glam::DVec3::new(1.5, 0.0, 2.0), glam::DVec3::ZERO, glam::DVec3::Z);
+    let h_point = radiometry::point_irradiance(
+        8.0,
+        glam::DVec3::new(1.5, 0.0, 2.0),
+        glam::DVec3::ZERO,
+        glam::DVec3::Z,
+    );
     assert_rel(only_point[0], h_point, 1e-4, "point alone");
     // the area estimate is Monte Carlo: 5 standard errors
-    assert!((both[0] - (h_area + h_point)).abs() <= 5.0 * se[0], "sum {} vs {} ± {}", both[0], h_area + h_point, se[0]);
-    assert!((only_area[0] - h_area).abs() <= 5.0 * se[0] + 1e-6, "area alone {} vs {h_area}", only_area[0]);
+    assert!(
+        (both[0] - (h_area + h_point)).abs() <= 5.0 * se[0],
+        "sum {} vs {} ± {}",
+        both[0],
+        h_area + h_point,
+        se[0]
+    );
+    assert!(
+        (only_area[0] - h_area).abs() <= 5.0 * se[0] + 1e-6,
+        "area alone {} vs {h_area}",
+        only_area[0]
+    );
 }
 
 #[test]
@@ -111,13 +148,28 @@ fn error_bars_cover_the_truth_95_percent_of_the_time() {
     // 200 independent measurements of a noisy case (a disk emitter's irradiance, 256 samples
     // each, cosine + light sampling): value ± 2·stderr must hold the closed form in 93–97 %
     // of them (a normal estimator covers 95.4 %; with 200 seeds the binomial sd is 1.5 %).
-    let xml = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../scenes/validation/disk_on_axis_irradiance.xml")).unwrap();
+    let xml = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../../scenes/validation/disk_on_axis_irradiance.xml"
+    ))
+    .unwrap();
     let expected = 0.6957160201721342;
-    let scene = steradian_mitsuba::load_string(&xml, Path::new("disk.xml"), Path::new("."), &[]).unwrap();
+    let scene =
+        steradian_mitsuba::load_string(&xml, Path::new("disk.xml"), Path::new("."), &[]).unwrap();
     let mut inside = 0;
     for seed in 0..200u64 {
-        let out = render(&scene, &RenderOptions { spp: Some(256), seed: Some(1000 + seed), threads: Some(1), ..Default::default() }).unwrap();
-        let (v, e) = (out.film.develop().get(0, 0).x as f64, out.film.develop_stderr().get(0, 0).x as f64);
+        let out = render(
+            &scene,
+            &RenderOptions {
+                spp: Some(256),
+                seed: Some(1000 + seed),
+                threads: Some(1),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let (v, e) =
+            (out.film.develop().get(0, 0).x as f64, out.film.develop_stderr().get(0, 0).x as f64);
         assert!(e > 0.0);
         if (v - expected).abs() <= 2.0 * e {
             inside += 1;
@@ -136,20 +188,34 @@ fn a_triangle_mesh_emitter_reads_like_the_rectangle_it_tiles() {
     // the MIS densities of cosine-sampled hits must agree with each other and the closed form.
     let dir = std::env::temp_dir().join(format!("steradian-tri-emitter-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("rect.obj"), "v 0 0 1\nv 2 0 1\nv 2 1 1\nv 0 1 1\nf 1 4 3\nf 1 3 2\n").unwrap();
+    std::fs::write(dir.join("rect.obj"), "v 0 0 1\nv 2 0 1\nv 2 1 1\nv 0 1 1\nf 1 4 3\nf 1 3 2\n")
+        .unwrap();
     let xml = r#"<scene version="3.0.0"><integrator type="path"><integer name="max_depth" value="1"/></integrator>
         <shape type="obj"><string name="filename" value="rect.obj"/><emitter type="area"><rgb name="radiance" value="2, 3, 4"/></emitter></shape>
         <shape type="disk"><transform name="to_world"><scale value="1e-4"/></transform>
           <sensor type="irradiancemeter" id="m"><film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/></film></sensor>
         </shape></scene>"#;
-    let scene = steradian_mitsuba::load_string(xml, &dir.join("tri.xml"), &dir, &[]).unwrap_or_else(|e| panic!("{e}"));
-    let out = render(&scene, &RenderOptions { spp: Some(1 << 14), seed: Some(5), threads: Some(1), ..Default::default() }).unwrap();
+    let scene = steradian_mitsuba::load_string(xml, &dir.join("tri.xml"), &dir, &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let out = render(
+        &scene,
+        &RenderOptions {
+            spp: Some(1 << 14),
+            seed: Some(5),
+            threads: Some(1),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let (v, e) = (out.film.develop().get(0, 0), out.film.develop_stderr().get(0, 0));
     std::fs::remove_dir_all(&dir).ok();
     let f = 0.167375010;
     for (c, l) in [2.0, 3.0, 4.0].iter().enumerate() {
         let expect = std::f64::consts::PI * l * f;
         let (v, e) = (v[c] as f64, e[c] as f64);
-        assert!(e > 0.0 && (v - expect).abs() <= 5.0 * e + 1e-6 * expect, "channel {c}: {v} ± {e} vs {expect}");
+        assert!(
+            e > 0.0 && (v - expect).abs() <= 5.0 * e + 1e-6 * expect,
+            "channel {c}: {v} ± {e} vs {expect}"
+        );
     }
 }

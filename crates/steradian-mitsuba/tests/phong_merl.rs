@@ -6,7 +6,10 @@ use std::io::{Read, Write};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
-use steradian::bsdf::{Bsdf, InternalScattering, MerlTable, MicrofacetDistribution, MicrofacetKind, RoughPlastic, ShadingPoint};
+use steradian::bsdf::{
+    Bsdf, InternalScattering, MerlTable, MicrofacetDistribution, MicrofacetKind, RoughPlastic,
+    ShadingPoint,
+};
 use steradian::film::Image;
 use steradian::integrator::{render, RenderOptions};
 use steradian::sampling::{Pcg32, SamplerKind};
@@ -19,7 +22,8 @@ fn repo_file(name: &str) -> PathBuf {
 
 /// A fresh directory for one test's files.
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("steradian-phong-merl-{}-{name}", std::process::id()));
+    let dir =
+        std::env::temp_dir().join(format!("steradian-phong-merl-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -31,10 +35,21 @@ fn sp() -> ShadingPoint {
 
 /// Renders with i.i.d. samples (so that per-pixel standard errors are valid); returns the
 /// image and its per-pixel standard errors.
-fn render_with_stderr(path: &Path, defines: &[(&str, &str)], spp: u32, seed: u64) -> (Image, Image, steradian::scene::Scene) {
-    let defines: Vec<(String, String)> = defines.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect();
+fn render_with_stderr(
+    path: &Path,
+    defines: &[(&str, &str)],
+    spp: u32,
+    seed: u64,
+) -> (Image, Image, steradian::scene::Scene) {
+    let defines: Vec<(String, String)> =
+        defines.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect();
     let scene = load_file(path, &defines).unwrap_or_else(|e| panic!("{e}"));
-    let opts = RenderOptions { spp: Some(spp), seed: Some(seed), sampler: Some(SamplerKind::Independent), ..Default::default() };
+    let opts = RenderOptions {
+        spp: Some(spp),
+        seed: Some(seed),
+        sampler: Some(SamplerKind::Independent),
+        ..Default::default()
+    };
     let out = render(&scene, &opts).unwrap();
     assert_eq!(out.dropped_samples, 0, "NaN/Inf samples in {}", path.display());
     (out.film.develop(), out.film.develop_stderr(), scene)
@@ -50,7 +65,13 @@ const ASSET_QUANTUM: f64 = 0.25;
 
 fn asset_bsdf() -> Bsdf {
     let d = MicrofacetDistribution::new(MicrofacetKind::Ggx, 0.15, 0.15, true);
-    Bsdf::RoughPlastic(RoughPlastic::new(d, 1.5, Spectrum::new(0.55, 0.12, 0.06).into(), Spectrum::ONE.into(), InternalScattering::Linear))
+    Bsdf::RoughPlastic(RoughPlastic::new(
+        d,
+        1.5,
+        Spectrum::new(0.55, 0.12, 0.06).into(),
+        Spectrum::ONE.into(),
+        InternalScattering::Linear,
+    ))
 }
 
 fn asset_bytes() -> Vec<u8> {
@@ -68,16 +89,21 @@ fn shipped_merl_asset_is_the_tabulated_roughplastic() {
         std::fs::write(&path, gz.finish().unwrap()).unwrap();
     }
     let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
-    MerlTable::read(&path).unwrap_or_else(|e| panic!("{e} (STERADIAN_REGENERATE_MERL=1 regenerates it)"));
+    MerlTable::read(&path)
+        .unwrap_or_else(|e| panic!("{e} (STERADIAN_REGENERATE_MERL=1 regenerates it)"));
     // Value by value, in the file's units: the table is regenerated with f32 arithmetic that
     // may change in its last bits (a faster sine, a different summation), and a value that
     // close to a rounding boundary of the quantum moves by one step. A different BSDF moves
     // most values by many steps.
     let mut shipped = Vec::new();
-    flate2::read::GzDecoder::new(std::fs::File::open(&path).unwrap()).read_to_end(&mut shipped).unwrap();
+    flate2::read::GzDecoder::new(std::fs::File::open(&path).unwrap())
+        .read_to_end(&mut shipped)
+        .unwrap();
     assert_eq!(shipped.len(), raw.len(), "{ASSET}: wrong size");
     assert_eq!(shipped[..12], raw[..12], "{ASSET}: wrong dimensions");
-    let values = |b: &[u8]| -> Vec<f64> { b[12..].chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect() };
+    let values = |b: &[u8]| -> Vec<f64> {
+        b[12..].chunks_exact(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect()
+    };
     let (a, b) = (values(&shipped), values(&raw));
     let worst = a.iter().zip(&b).map(|(x, y)| (x - y).abs()).fold(0.0, f64::max);
     let moved = a.iter().zip(&b).filter(|(x, y)| x != y).count();
@@ -94,12 +120,16 @@ fn shipped_merl_asset_is_the_tabulated_roughplastic() {
 #[test]
 fn shipped_scenes_render() {
     for name in ["scenes/phong.xml", "scenes/merl.xml"] {
-        let (img, _, scene) = render_with_stderr(&repo_file(name), &[("width", "48"), ("height", "24")], 4, 7);
+        let (img, _, scene) =
+            render_with_stderr(&repo_file(name), &[("width", "48"), ("height", "24")], 4, 7);
         let m = img.channel_means();
         eprintln!("{name}: channel means {m:.4?}");
         assert!(m.iter().all(|x| x.is_finite() && *x > 0.01), "{name}: {m:?}");
         let want = if name.contains("merl") { "Merl" } else { "Phong" };
-        assert!(scene.bsdfs.iter().any(|b| format!("{b:?}").starts_with(want)), "{name} has no {want} BSDF");
+        assert!(
+            scene.bsdfs.iter().any(|b| format!("{b:?}").starts_with(want)),
+            "{name} has no {want} BSDF"
+        );
     }
 }
 
@@ -137,7 +167,11 @@ fn compare_table_with_analytic(test: &str, analytic: &Bsdf, analytic_xml: &str) 
 fn compare_file_with_analytic(test: &str, merl_bytes: &[u8], analytic: &Bsdf, analytic_xml: &str) {
     let dir = temp_dir(test);
     std::fs::write(dir.join("t.binary"), merl_bytes).unwrap();
-    std::fs::write(dir.join("merl.xml"), sphere_scene(r#"<bsdf type="merl"><string name="filename" value="t.binary"/></bsdf>"#)).unwrap();
+    std::fs::write(
+        dir.join("merl.xml"),
+        sphere_scene(r#"<bsdf type="merl"><string name="filename" value="t.binary"/></bsdf>"#),
+    )
+    .unwrap();
     std::fs::write(dir.join("analytic.xml"), sphere_scene(analytic_xml)).unwrap();
     let spp = 64;
     // different seeds: the two images are independent, so σ² adds
@@ -148,7 +182,12 @@ fn compare_file_with_analytic(test: &str, merl_bytes: &[u8], analytic: &Bsdf, an
     let mut rng = Pcg32::new(5, 9);
     let mut eps = 0f32;
     for _ in 0..20_000 {
-        let mut dir = || steradian::sampling::warp::square_to_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+        let mut dir = || {
+            steradian::sampling::warp::square_to_uniform_hemisphere(Vec2::new(
+                rng.next_f32(),
+                rng.next_f32(),
+            ))
+        };
         let (wo, wi): (Vec3, Vec3) = (dir(), dir());
         let (x, y) = (merl.eval(&sp(), wo, wi), analytic.eval(&sp(), wo, wi));
         eps = eps.max(((x - y).abs() / y.max(Spectrum::splat(1e-6))).max_element());
@@ -198,12 +237,23 @@ fn compare_file_with_analytic(test: &str, merl_bytes: &[u8], analytic: &Bsdf, an
 fn lambertian_table_renders_like_diffuse() {
     let rho = Spectrum::new(0.7, 0.45, 0.2);
     let analytic = Bsdf::Diffuse(steradian::bsdf::Diffuse::new(rho.into()));
-    compare_table_with_analytic("lambert", &analytic, r#"<bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.45, 0.2"/></bsdf>"#);
+    compare_table_with_analytic(
+        "lambert",
+        &analytic,
+        r#"<bsdf type="diffuse"><rgb name="reflectance" value="0.7, 0.45, 0.2"/></bsdf>"#,
+    );
 }
 
 #[test]
 fn phong_table_renders_like_phong() {
-    let analytic = Bsdf::Phong(steradian::bsdf::Phong::new(Spectrum::new(0.4, 0.3, 0.1).into(), Spectrum::new(0.4, 0.5, 0.6).into(), 15.0).unwrap());
+    let analytic = Bsdf::Phong(
+        steradian::bsdf::Phong::new(
+            Spectrum::new(0.4, 0.3, 0.1).into(),
+            Spectrum::new(0.4, 0.5, 0.6).into(),
+            15.0,
+        )
+        .unwrap(),
+    );
     compare_table_with_analytic(
         "phong",
         &analytic,
@@ -232,7 +282,8 @@ fn load_err(test: &str, bsdf: &str, files: &[(&str, &[u8])]) -> (PathBuf, LoadEr
     for (name, bytes) in files {
         std::fs::write(dir.join(name), bytes).unwrap();
     }
-    let xml = format!("<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n  {bsdf}\n</shape>\n</scene>");
+    let xml =
+        format!("<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n  {bsdf}\n</shape>\n</scene>");
     let path = dir.join("scene.xml");
     std::fs::write(&path, xml).unwrap();
     match catch_unwind(AssertUnwindSafe(|| load_file(&path, &[]))) {
@@ -248,12 +299,18 @@ fn check(path: &Path, e: &LoadError, line: u32, col: u32, needles: &[&str]) {
     assert_eq!(*pos.file, path, "wrong file in: {e}");
     assert_eq!((pos.line, pos.col), (line, col), "wrong position in: {e}");
     for needle in needles {
-        assert!(e.message.contains(needle), "message {:?} does not contain {:?}", e.message, needle);
+        assert!(
+            e.message.contains(needle),
+            "message {:?} does not contain {:?}",
+            e.message,
+            needle
+        );
     }
     assert!(e.to_string().starts_with(&format!("{}:{line}:{col}: error: ", path.display())), "{e}");
 }
 
-const MERL_FILE: &str = "<bsdf type=\"merl\">\n    <string name=\"filename\" value=\"m.binary\"/>\n</bsdf>";
+const MERL_FILE: &str =
+    "<bsdf type=\"merl\">\n    <string name=\"filename\" value=\"m.binary\"/>\n</bsdf>";
 
 #[test]
 fn merl_file_errors() {
@@ -278,7 +335,11 @@ fn merl_file_errors() {
 
 #[test]
 fn phong_parameter_errors() {
-    let (p, e) = load_err("phong-exponent", "<bsdf type=\"phong\">\n    <float name=\"exponent\" value=\"-2\"/>\n</bsdf>", &[]);
+    let (p, e) = load_err(
+        "phong-exponent",
+        "<bsdf type=\"phong\">\n    <float name=\"exponent\" value=\"-2\"/>\n</bsdf>",
+        &[],
+    );
     check(&p, &e, 4, 5, &["<bsdf type=\"phong\">", "exponent must be a finite number ≥ 0, got -2"]);
 
     let bsdf = "<bsdf type=\"phong\">\n    <rgb name=\"diffuse_reflectance\" value=\"0.6, 0.2, 0.2\"/>\n    <rgb name=\"specular_reflectance\" value=\"0.5\"/>\n</bsdf>";
@@ -286,19 +347,27 @@ fn phong_parameter_errors() {
     check(&p, &e, 4, 5, &["energy conservation", "≤ 1", "reaches 1.1"]);
 
     // specular only: the error is at the specular reflectance
-    let bsdf = "<bsdf type=\"phong\">\n    <float name=\"specular_reflectance\" value=\"0.9\"/>\n</bsdf>";
+    let bsdf =
+        "<bsdf type=\"phong\">\n    <float name=\"specular_reflectance\" value=\"0.9\"/>\n</bsdf>";
     let (p, e) = load_err("phong-energy-default", bsdf, &[]);
     check(&p, &e, 4, 5, &["reaches 1.4"]);
 
-    let (p, e) = load_err("phong-unknown", "<bsdf type=\"phong\">\n    <float name=\"shininess\" value=\"2\"/>\n</bsdf>", &[]);
+    let (p, e) = load_err(
+        "phong-unknown",
+        "<bsdf type=\"phong\">\n    <float name=\"shininess\" value=\"2\"/>\n</bsdf>",
+        &[],
+    );
     check(&p, &e, 4, 5, &["unreferenced property 'shininess'"]);
 }
 
 #[test]
 fn phong_defaults_and_parameters() {
     let load = |bsdf: &str| {
-        let xml = format!(r#"<scene version="3.0.0"><integrator type="path"/><sensor type="perspective"/><shape type="sphere">{bsdf}</shape></scene>"#);
-        let scene = steradian_mitsuba::load_string(&xml, Path::new("t.xml"), Path::new("."), &[]).unwrap_or_else(|e| panic!("{e}"));
+        let xml = format!(
+            r#"<scene version="3.0.0"><integrator type="path"/><sensor type="perspective"/><shape type="sphere">{bsdf}</shape></scene>"#
+        );
+        let scene = steradian_mitsuba::load_string(&xml, Path::new("t.xml"), Path::new("."), &[])
+            .unwrap_or_else(|e| panic!("{e}"));
         match scene.bsdfs.into_iter().next().unwrap() {
             Bsdf::Phong(p) => p,
             b => panic!("{b:?}"),
@@ -306,7 +375,15 @@ fn phong_defaults_and_parameters() {
     };
     let p = load(r#"<bsdf type="phong"/>"#);
     let uv = Vec2::ZERO;
-    assert_eq!((p.diffuse_reflectance.eval(uv), p.specular_reflectance.eval(uv), p.exponent), (Spectrum::splat(0.5), Spectrum::splat(0.2), 30.0));
-    let p = load(r#"<bsdf type="phong"><rgb name="diffuse_reflectance" value="0.1, 0.2, 0.3"/><float name="specular_reflectance" value="0.7"/><float name="exponent" value="0"/></bsdf>"#);
-    assert_eq!((p.diffuse_reflectance.eval(uv), p.specular_reflectance.eval(uv), p.exponent), (Spectrum::new(0.1, 0.2, 0.3), Spectrum::splat(0.7), 0.0));
+    assert_eq!(
+        (p.diffuse_reflectance.eval(uv), p.specular_reflectance.eval(uv), p.exponent),
+        (Spectrum::splat(0.5), Spectrum::splat(0.2), 30.0)
+    );
+    let p = load(
+        r#"<bsdf type="phong"><rgb name="diffuse_reflectance" value="0.1, 0.2, 0.3"/><float name="specular_reflectance" value="0.7"/><float name="exponent" value="0"/></bsdf>"#,
+    );
+    assert_eq!(
+        (p.diffuse_reflectance.eval(uv), p.specular_reflectance.eval(uv), p.exponent),
+        (Spectrum::new(0.1, 0.2, 0.3), Spectrum::splat(0.7), 0.0)
+    );
 }

@@ -20,7 +20,9 @@ fn full_scene(body: &str) -> String {
 /// Loads `xml` as `bad.xml`, expecting an error and no panic.
 #[track_caller]
 fn err(xml: &str) -> LoadError {
-    match catch_unwind(AssertUnwindSafe(|| load_string(xml, Path::new("bad.xml"), Path::new("."), &[]))) {
+    match catch_unwind(AssertUnwindSafe(|| {
+        load_string(xml, Path::new("bad.xml"), Path::new("."), &[])
+    })) {
         Ok(Ok(_)) => panic!("expected an error for:\n{xml}"),
         Ok(Err(e)) => e,
         Err(_) => panic!("the loader panicked on:\n{xml}"),
@@ -34,7 +36,12 @@ fn check(e: &LoadError, line: u32, col: u32, needles: &[&str]) {
     assert_eq!(*pos.file, PathBuf::from("bad.xml"), "wrong file in: {e}");
     assert_eq!((pos.line, pos.col), (line, col), "wrong position in: {e}");
     for needle in needles {
-        assert!(e.message.contains(needle), "message {:?} does not contain {:?}", e.message, needle);
+        assert!(
+            e.message.contains(needle),
+            "message {:?} does not contain {:?}",
+            e.message,
+            needle
+        );
     }
     assert!(e.to_string().starts_with(&format!("bad.xml:{line}:{col}: error: ")), "{e}");
 }
@@ -50,7 +57,12 @@ fn unknown_shape_type() {
 
 #[test]
 fn unknown_bsdf_type() {
-    check(&err(&scene("<bsdf type=\"principled\"/>")), 2, 1, &["unknown bsdf plugin type 'principled'", "diffuse"]);
+    check(
+        &err(&scene("<bsdf type=\"principled\"/>")),
+        2,
+        1,
+        &["unknown bsdf plugin type 'principled'", "diffuse"],
+    );
     // Nested in a shape, and nested in a twosided BSDF.
     let xml = scene("<shape type=\"sphere\">\n  <bsdf type=\"plastik\"/>\n</shape>");
     check(&err(&xml), 3, 3, &["unknown bsdf plugin type 'plastik'"]);
@@ -60,19 +72,34 @@ fn unknown_bsdf_type() {
 
 #[test]
 fn unknown_emitter_type() {
-    check(&err(&scene("<emitter type=\"envmap\"/>")), 2, 1, &["unknown emitter plugin type 'envmap'", "constant"]);
+    check(
+        &err(&scene("<emitter type=\"envmap\"/>")),
+        2,
+        1,
+        &["unknown emitter plugin type 'envmap'", "constant"],
+    );
     let xml = scene("<shape type=\"sphere\">\n  <emitter type=\"point\"/>\n</shape>");
     check(&err(&xml), 3, 3, &["a shape can only carry an 'area' emitter, not 'point'"]);
 }
 
 #[test]
 fn unknown_sensor_type() {
-    check(&err(&scene("<sensor type=\"orthographic\"/>")), 2, 1, &["unknown sensor plugin type 'orthographic'", "perspective"]);
+    check(
+        &err(&scene("<sensor type=\"orthographic\"/>")),
+        2,
+        1,
+        &["unknown sensor plugin type 'orthographic'", "perspective"],
+    );
 }
 
 #[test]
 fn unknown_integrator_type() {
-    check(&err(&scene("<integrator type=\"volpath\"/>")), 2, 1, &["unknown integrator plugin type 'volpath'", "path"]);
+    check(
+        &err(&scene("<integrator type=\"volpath\"/>")),
+        2,
+        1,
+        &["unknown integrator plugin type 'volpath'", "path"],
+    );
 }
 
 #[test]
@@ -93,13 +120,21 @@ fn unused_parameter_on_a_shape() {
     let xml = scene("<shape type=\"sphere\">\n  <float name=\"radius\" value=\"1\"/>\n  <float name=\"radios\" value=\"2\"/>\n</shape>");
     check(&err(&xml), 4, 3, &["unreferenced property 'radios' in <shape type=\"sphere\">"]);
     // A rectangle has no radius.
-    let xml = scene("<shape type=\"rectangle\" id=\"r\">\n  <float name=\"radius\" value=\"2\"/>\n</shape>");
-    check(&err(&xml), 3, 3, &["unreferenced property 'radius' in <shape type=\"rectangle\" id=\"r\">"]);
+    let xml = scene(
+        "<shape type=\"rectangle\" id=\"r\">\n  <float name=\"radius\" value=\"2\"/>\n</shape>",
+    );
+    check(
+        &err(&xml),
+        3,
+        3,
+        &["unreferenced property 'radius' in <shape type=\"rectangle\" id=\"r\">"],
+    );
 }
 
 #[test]
 fn unused_parameter_on_a_bsdf() {
-    let xml = scene("<bsdf type=\"diffuse\">\n  <rgb name=\"reflectence\" value=\"0.5\"/>\n</bsdf>");
+    let xml =
+        scene("<bsdf type=\"diffuse\">\n  <rgb name=\"reflectence\" value=\"0.5\"/>\n</bsdf>");
     check(&err(&xml), 3, 3, &["unreferenced property 'reflectence' in <bsdf type=\"diffuse\">"]);
 }
 
@@ -111,7 +146,9 @@ fn unused_parameter_on_a_film() {
 
 #[test]
 fn unused_parameter_on_an_integrator() {
-    let xml = scene("<integrator type=\"path\">\n  <integer name=\"maxdepth\" value=\"4\"/>\n</integrator>");
+    let xml = scene(
+        "<integrator type=\"path\">\n  <integer name=\"maxdepth\" value=\"4\"/>\n</integrator>",
+    );
     check(&err(&xml), 3, 3, &["unreferenced property 'maxdepth' in <integrator type=\"path\">"]);
 }
 
@@ -124,12 +161,32 @@ fn unused_parameter_on_an_emitter() {
 
 #[test]
 fn mistyped_parameters() {
-    let xml = scene("<integrator type=\"path\">\n  <float name=\"max_depth\" value=\"8\"/>\n</integrator>");
-    check(&err(&xml), 3, 3, &["property 'max_depth' of <integrator type=\"path\"> must be integer, got float"]);
-    let xml = scene("<sensor type=\"perspective\">\n    <string name=\"fov\" value=\"45\"/>\n</sensor>");
-    check(&err(&xml), 3, 5, &["property 'fov' of <sensor type=\"perspective\"> must be float, got string"]);
-    let xml = scene("<shape type=\"sphere\">\n  <string name=\"flip_normals\" value=\"true\"/>\n</shape>");
-    check(&err(&xml), 3, 3, &["property 'flip_normals' of <shape type=\"sphere\"> must be boolean, got string"]);
+    let xml = scene(
+        "<integrator type=\"path\">\n  <float name=\"max_depth\" value=\"8\"/>\n</integrator>",
+    );
+    check(
+        &err(&xml),
+        3,
+        3,
+        &["property 'max_depth' of <integrator type=\"path\"> must be integer, got float"],
+    );
+    let xml =
+        scene("<sensor type=\"perspective\">\n    <string name=\"fov\" value=\"45\"/>\n</sensor>");
+    check(
+        &err(&xml),
+        3,
+        5,
+        &["property 'fov' of <sensor type=\"perspective\"> must be float, got string"],
+    );
+    let xml = scene(
+        "<shape type=\"sphere\">\n  <string name=\"flip_normals\" value=\"true\"/>\n</shape>",
+    );
+    check(
+        &err(&xml),
+        3,
+        3,
+        &["property 'flip_normals' of <shape type=\"sphere\"> must be boolean, got string"],
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -137,7 +194,8 @@ fn mistyped_parameters() {
 
 /// A fresh directory for one test's files.
 fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("steradian-plugin-errors-{}-{name}", std::process::id()));
+    let dir =
+        std::env::temp_dir().join(format!("steradian-plugin-errors-{}-{name}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     dir
@@ -145,7 +203,12 @@ fn temp_dir(name: &str) -> PathBuf {
 
 /// Writes `mesh` (if any) as `dir/mesh_name` and a scene loading it with a `<shape type>`;
 /// returns the scene path and the error. The `filename` property is at line 3, column 5.
-fn mesh_err(test: &str, shape_type: &str, mesh_name: &str, mesh: Option<&[u8]>) -> (PathBuf, LoadError) {
+fn mesh_err(
+    test: &str,
+    shape_type: &str,
+    mesh_name: &str,
+    mesh: Option<&[u8]>,
+) -> (PathBuf, LoadError) {
     let dir = temp_dir(test);
     if let Some(bytes) = mesh {
         std::fs::write(dir.join(mesh_name), bytes).unwrap();
@@ -169,7 +232,12 @@ fn check_mesh(path: &Path, e: &LoadError, needles: &[&str]) {
     assert_eq!(*pos.file, path, "wrong file in: {e}");
     assert_eq!((pos.line, pos.col), (3, 5), "wrong position in: {e}");
     for needle in needles {
-        assert!(e.message.contains(needle), "message {:?} does not contain {:?}", e.message, needle);
+        assert!(
+            e.message.contains(needle),
+            "message {:?} does not contain {:?}",
+            e.message,
+            needle
+        );
     }
     assert!(e.to_string().starts_with(&format!("{}:3:5: error: ", path.display())), "{e}");
 }
@@ -254,8 +322,18 @@ fn face_index_out_of_range() {
 
 #[test]
 fn mesh_without_filename() {
-    check(&err(&scene("<shape type=\"obj\"/>")), 2, 1, &["<shape type=\"obj\">: missing 'filename'"]);
-    check(&err(&scene("<shape type=\"ply\" id=\"m\">\n</shape>")), 2, 1, &["<shape type=\"ply\" id=\"m\">: missing 'filename'"]);
+    check(
+        &err(&scene("<shape type=\"obj\"/>")),
+        2,
+        1,
+        &["<shape type=\"obj\">: missing 'filename'"],
+    );
+    check(
+        &err(&scene("<shape type=\"ply\" id=\"m\">\n</shape>")),
+        2,
+        1,
+        &["<shape type=\"ply\" id=\"m\">: missing 'filename'"],
+    );
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -267,9 +345,24 @@ fn film_scene(props: &str) -> String {
 
 #[test]
 fn film_size() {
-    check(&err(&film_scene("<integer name=\"width\" value=\"0\"/>")), 4, 5, &["'width' must be a positive integer, got 0"]);
-    check(&err(&film_scene("<integer name=\"width\" value=\"-16\"/>")), 4, 5, &["'width' must be a positive integer, got -16"]);
-    check(&err(&film_scene("<integer name=\"height\" value=\"0\"/>")), 4, 5, &["'height' must be a positive integer, got 0"]);
+    check(
+        &err(&film_scene("<integer name=\"width\" value=\"0\"/>")),
+        4,
+        5,
+        &["'width' must be a positive integer, got 0"],
+    );
+    check(
+        &err(&film_scene("<integer name=\"width\" value=\"-16\"/>")),
+        4,
+        5,
+        &["'width' must be a positive integer, got -16"],
+    );
+    check(
+        &err(&film_scene("<integer name=\"height\" value=\"0\"/>")),
+        4,
+        5,
+        &["'height' must be a positive integer, got 0"],
+    );
     let e = err(&film_scene("<integer name=\"width\" value=\"10000000\"/>"));
     check(&e, 3, 3, &["<film type=\"hdrfilm\">: film size 10000000x576 is too large"]);
     assert!(!e.message.contains("hdrfilm: hdrfilm"), "{e}");
@@ -283,22 +376,44 @@ fn sensor_scene(props: &str) -> String {
 fn field_of_view_out_of_range() {
     for fov in ["0", "180", "-10", "270"] {
         let e = err(&sensor_scene(&format!("<float name=\"fov\" value=\"{fov}\"/>")));
-        check(&e, 3, 5, &["<sensor type=\"perspective\">", "fov must lie strictly between 0 and 180 degrees"]);
+        check(
+            &e,
+            3,
+            5,
+            &["<sensor type=\"perspective\">", "fov must lie strictly between 0 and 180 degrees"],
+        );
     }
-    check(&err(&sensor_scene("<string name=\"focal_length\" value=\"0mm\"/>")), 3, 5, &["focal_length must look like '50mm', got '0mm'"]);
+    check(
+        &err(&sensor_scene("<string name=\"focal_length\" value=\"0mm\"/>")),
+        3,
+        5,
+        &["focal_length must look like '50mm', got '0mm'"],
+    );
 }
 
 #[test]
 fn scaled_camera() {
-    let xml = sensor_scene("<transform name=\"to_world\">\n        <scale value=\"2\"/>\n    </transform>");
-    check(&err(&xml), 3, 5, &["<sensor type=\"perspective\">", "scale factors in the camera's to_world are not allowed"]);
+    let xml = sensor_scene(
+        "<transform name=\"to_world\">\n        <scale value=\"2\"/>\n    </transform>",
+    );
+    check(
+        &err(&xml),
+        3,
+        5,
+        &[
+            "<sensor type=\"perspective\">",
+            "scale factors in the camera's to_world are not allowed",
+        ],
+    );
 }
 
 #[test]
 fn thinlens_without_aperture() {
     let e = err(&scene("<sensor type=\"thinlens\" id=\"cam\">\n  <float name=\"focus_distance\" value=\"3\"/>\n</sensor>"));
     check(&e, 2, 1, &["<sensor type=\"thinlens\" id=\"cam\">: missing 'aperture_radius'"]);
-    let e = err(&scene("<sensor type=\"thinlens\">\n  <float name=\"aperture_radius\" value=\"-0.1\"/>\n</sensor>"));
+    let e = err(&scene(
+        "<sensor type=\"thinlens\">\n  <float name=\"aperture_radius\" value=\"-0.1\"/>\n</sensor>",
+    ));
     check(&e, 3, 3, &["aperture_radius must be non-negative, got -0.1"]);
 }
 
@@ -313,26 +428,51 @@ fn sensor_with_two_films() {
 
 #[test]
 fn area_emitter_at_scene_level() {
-    let e = err(&scene("<emitter type=\"area\">\n  <rgb name=\"radiance\" value=\"1\"/>\n</emitter>"));
+    let e =
+        err(&scene("<emitter type=\"area\">\n  <rgb name=\"radiance\" value=\"1\"/>\n</emitter>"));
     check(&e, 2, 1, &["an 'area' emitter must be nested inside the <shape> that emits"]);
 }
 
 #[test]
 fn spot_beam_wider_than_cutoff() {
     let xml = scene("<emitter type=\"spot\">\n  <float name=\"cutoff_angle\" value=\"20\"/>\n  <float name=\"beam_width\" value=\"30\"/>\n</emitter>");
-    check(&err(&xml), 4, 3, &["<emitter type=\"spot\">", "beam_width must lie in (0°, cutoff_angle = 20°], got 30°"]);
-    let xml = scene("<emitter type=\"spot\">\n  <float name=\"cutoff_angle\" value=\"200\"/>\n</emitter>");
+    check(
+        &err(&xml),
+        4,
+        3,
+        &["<emitter type=\"spot\">", "beam_width must lie in (0°, cutoff_angle = 20°], got 30°"],
+    );
+    let xml = scene(
+        "<emitter type=\"spot\">\n  <float name=\"cutoff_angle\" value=\"200\"/>\n</emitter>",
+    );
     check(&err(&xml), 3, 3, &["cutoff_angle must lie in (0°, 180°], got 200°"]);
 }
 
 #[test]
 fn negative_radiance() {
     let xml = scene("<shape type=\"sphere\">\n  <emitter type=\"area\">\n    <rgb name=\"radiance\" value=\"1, -1, 1\"/>\n  </emitter>\n</shape>");
-    check(&err(&xml), 4, 5, &["<emitter type=\"area\">: 'radiance' must be finite and non-negative"]);
-    let xml = scene("<emitter type=\"constant\">\n  <rgb name=\"radiance\" value=\"-2\"/>\n</emitter>");
-    check(&err(&xml), 3, 3, &["<emitter type=\"constant\">: 'radiance' must be finite and non-negative"]);
-    let xml = scene("<emitter type=\"point\">\n  <rgb name=\"intensity\" value=\"-1\"/>\n</emitter>");
-    check(&err(&xml), 3, 3, &["<emitter type=\"point\">: 'intensity' must be finite and non-negative"]);
+    check(
+        &err(&xml),
+        4,
+        5,
+        &["<emitter type=\"area\">: 'radiance' must be finite and non-negative"],
+    );
+    let xml =
+        scene("<emitter type=\"constant\">\n  <rgb name=\"radiance\" value=\"-2\"/>\n</emitter>");
+    check(
+        &err(&xml),
+        3,
+        3,
+        &["<emitter type=\"constant\">: 'radiance' must be finite and non-negative"],
+    );
+    let xml =
+        scene("<emitter type=\"point\">\n  <rgb name=\"intensity\" value=\"-1\"/>\n</emitter>");
+    check(
+        &err(&xml),
+        3,
+        3,
+        &["<emitter type=\"point\">: 'intensity' must be finite and non-negative"],
+    );
 }
 
 #[test]
@@ -358,9 +498,18 @@ fn twosided_with_three_bsdfs() {
 
 #[test]
 fn negative_max_depth() {
-    let xml = scene("<integrator type=\"path\">\n  <integer name=\"max_depth\" value=\"-2\"/>\n</integrator>");
-    check(&err(&xml), 3, 3, &["<integrator type=\"path\">: max_depth must be -1 (unbounded) or >= 0, got -2"]);
-    let xml = scene("<integrator type=\"path\">\n  <integer name=\"rr_depth\" value=\"0\"/>\n</integrator>");
+    let xml = scene(
+        "<integrator type=\"path\">\n  <integer name=\"max_depth\" value=\"-2\"/>\n</integrator>",
+    );
+    check(
+        &err(&xml),
+        3,
+        3,
+        &["<integrator type=\"path\">: max_depth must be -1 (unbounded) or >= 0, got -2"],
+    );
+    let xml = scene(
+        "<integrator type=\"path\">\n  <integer name=\"rr_depth\" value=\"0\"/>\n</integrator>",
+    );
     check(&err(&xml), 3, 3, &["<integrator type=\"path\">: 'rr_depth' must be at least 1"]);
 }
 

@@ -23,8 +23,11 @@ fn data(name: &str) -> PathBuf {
 }
 
 fn render_scene(name: &str, spp: u32) -> Image {
-    let scene = steradian_mitsuba::load_file(&data(&format!("{name}.xml")), &[]).unwrap_or_else(|e| panic!("{e}"));
-    let out = render(&scene, &RenderOptions { spp: Some(spp), seed: Some(1), ..Default::default() }).unwrap();
+    let scene = steradian_mitsuba::load_file(&data(&format!("{name}.xml")), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let out =
+        render(&scene, &RenderOptions { spp: Some(spp), seed: Some(1), ..Default::default() })
+            .unwrap();
     assert_eq!(out.spp, spp);
     assert_eq!(out.dropped_samples, 0, "NaN/Inf samples in {name}");
     out.film.develop()
@@ -37,10 +40,15 @@ fn compare(name: &str, spp: u32, max_rel_mse: f64, max_mean_error: f64) {
     let e = rel_mse(&img, &reference);
     let (m, r) = (img.channel_means(), reference.channel_means());
     let ratios: Vec<f64> = (0..3).map(|c| m[c] / r[c]).collect();
-    eprintln!("{name} @ {spp} spp: relMSE {e:.3e} (bound {max_rel_mse:.1e}), mean ratios {ratios:.5?}");
+    eprintln!(
+        "{name} @ {spp} spp: relMSE {e:.3e} (bound {max_rel_mse:.1e}), mean ratios {ratios:.5?}"
+    );
     assert!(e <= max_rel_mse, "{name}: relMSE {e:.3e} exceeds {max_rel_mse:.1e}");
     for (c, ratio) in ratios.iter().enumerate() {
-        assert!((ratio - 1.0).abs() <= max_mean_error, "{name}: channel {c} mean ratio {ratio:.5} off by more than {max_mean_error}");
+        assert!(
+            (ratio - 1.0).abs() <= max_mean_error,
+            "{name}: channel {c} mean ratio {ratio:.5} off by more than {max_mean_error}"
+        );
     }
 }
 

@@ -32,7 +32,18 @@ fn pixels(out: &RenderOutput) -> Vec<f32> {
 #[test]
 fn the_image_does_not_depend_on_the_thread_count() {
     let s = scene();
-    let run = |threads| render(&s, &RenderOptions { spp: Some(24), seed: Some(3), threads: Some(threads), ..Default::default() }).unwrap();
+    let run = |threads| {
+        render(
+            &s,
+            &RenderOptions {
+                spp: Some(24),
+                seed: Some(3),
+                threads: Some(threads),
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
     let one = run(1);
     assert!(!one.interrupted && one.spp == 24);
     let reference = pixels(&one);
@@ -56,11 +67,27 @@ fn a_cancelled_render_keeps_only_whole_passes() {
                 cancel.store(true, Ordering::Relaxed);
             }
         };
-        let opts = RenderOptions { spp: Some(256), seed: Some(7), threads: Some(threads), cancel: Some(&cancel), progress: Some(&progress), ..Default::default() };
+        let opts = RenderOptions {
+            spp: Some(256),
+            seed: Some(7),
+            threads: Some(threads),
+            cancel: Some(&cancel),
+            progress: Some(&progress),
+            ..Default::default()
+        };
         let out = render(&s, &opts).unwrap();
         assert!(out.interrupted, "{threads} threads, cancelled after {after} tiles");
         assert!((1..256).contains(&out.spp), "{threads} threads: {} spp kept", out.spp);
-        let full = render(&s, &RenderOptions { spp: Some(out.spp), seed: Some(7), threads: Some(1), ..Default::default() }).unwrap();
+        let full = render(
+            &s,
+            &RenderOptions {
+                spp: Some(out.spp),
+                seed: Some(7),
+                threads: Some(1),
+                ..Default::default()
+            },
+        )
+        .unwrap();
         assert!(!full.interrupted);
         // the same samples, summed in other groups: equal to float rounding
         for (a, b) in pixels(&out).iter().zip(pixels(&full)) {

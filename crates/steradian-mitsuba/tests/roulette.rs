@@ -15,7 +15,8 @@ const LE: f64 = 1.0;
 const RHO: f64 = 0.8;
 
 fn scene(rr_scale: Option<f32>) -> String {
-    let rr_scale = rr_scale.map(|k| format!(r#"<float name="rr_scale" value="{k}"/>"#)).unwrap_or_default();
+    let rr_scale =
+        rr_scale.map(|k| format!(r#"<float name="rr_scale" value="{k}"/>"#)).unwrap_or_default();
     format!(
         r#"<scene version="3.0.0">
         <integrator type="path"><integer name="max_depth" value="-1"/><integer name="rr_depth" value="1"/>
@@ -37,19 +38,34 @@ fn roulette_keeps_the_integrating_sphere_radiance() {
     // Mitsuba's κ = 1, steradian's default (4), and a harsher one
     for (seed, rr_scale) in [(1, Some(1.0)), (2, None), (3, Some(0.25))] {
         let (mean, se) = common::mean_and_error(&scene(rr_scale), "roulette.xml", seed);
-        assert!((mean - expected).abs() <= 5.0 * se, "rr_scale {rr_scale:?}: {mean} ± {se}, expected {expected}");
+        assert!(
+            (mean - expected).abs() <= 5.0 * se,
+            "rr_scale {rr_scale:?}: {mean} ± {se}, expected {expected}"
+        );
         errors.push(se);
     }
     // Ending fewer paths early must lower the noise: the default (κ = 4) against κ = 1, and
     // κ = 1 against 0.25. With `rr_scale` ignored the three would agree within their noise.
-    assert!(errors[1] < 0.8 * errors[0] && errors[0] < 0.8 * errors[2], "standard errors for κ = 1, 4, 0.25: {errors:?}");
+    assert!(
+        errors[1] < 0.8 * errors[0] && errors[0] < 0.8 * errors[2],
+        "standard errors for κ = 1, 4, 0.25: {errors:?}"
+    );
 }
 
 #[test]
 fn rr_scale_must_be_positive() {
     for bad in ["0", "-1", "nan"] {
-        let xml = scene(None).replace(r#"<integer name="branches" value="2"/>"#, &format!(r#"<float name="rr_scale" value="{bad}"/>"#));
-        let e = steradian_mitsuba::load_string(&xml, std::path::Path::new("roulette.xml"), std::path::Path::new("."), &[]).expect_err("an error");
+        let xml = scene(None).replace(
+            r#"<integer name="branches" value="2"/>"#,
+            &format!(r#"<float name="rr_scale" value="{bad}"/>"#),
+        );
+        let e = steradian_mitsuba::load_string(
+            &xml,
+            std::path::Path::new("roulette.xml"),
+            std::path::Path::new("."),
+            &[],
+        )
+        .expect_err("an error");
         assert!(e.to_string().contains("rr_scale must be a positive number"), "{e}");
         assert_eq!(e.pos.as_ref().map(|p| (p.line, p.col)), Some((3, 13)), "{e}");
     }

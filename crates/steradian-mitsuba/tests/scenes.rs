@@ -74,11 +74,18 @@ fn cornell_values() {
     // corner (0.23, 0.99, 0.2).
     let light = s.ids.get("light").unwrap();
     let m = light.props.get_transform("to_world").unwrap().unwrap();
-    assert!(close(m.point(Vec3::new(1.0, 1.0, 0.0)), Vec3::new(0.23, 0.99, 0.2)), "{}", m.point(Vec3::new(1.0, 1.0, 0.0)));
+    assert!(
+        close(m.point(Vec3::new(1.0, 1.0, 0.0)), Vec3::new(0.23, 0.99, 0.2)),
+        "{}",
+        m.point(Vec3::new(1.0, 1.0, 0.0))
+    );
     // Normal +z faces down after the rotation.
     assert!(close(m.normal(Vec3::Z).normalize(), -Vec3::Y));
     let em = &light.children_of(ObjectTag::Emitter)[0].node;
-    assert!(close(em.props.get_spectrum("radiance").unwrap().map(Vec3::from).unwrap(), Vec3::new(18.387, 13.9873, 6.75357)));
+    assert!(close(
+        em.props.get_spectrum("radiance").unwrap().map(Vec3::from).unwrap(),
+        Vec3::new(18.387, 13.9873, 6.75357)
+    ));
 
     // <ref id="white"/> is shared, and the ref keeps its own position.
     let bsdf = &light.children_of(ObjectTag::Bsdf)[0];
@@ -86,7 +93,10 @@ fn cornell_values() {
     assert!(std::sync::Arc::ptr_eq(&bsdf.node, s.ids.get("white").unwrap()));
     assert_eq!((bsdf.pos().line, bsdf.pos().col), (61, 9));
     assert_eq!((bsdf.node.pos.line, bsdf.node.pos.col), (42, 5));
-    assert!(close(bsdf.node.props.get_spectrum("reflectance").unwrap().map(Vec3::from).unwrap(), Vec3::new(0.885809, 0.698859, 0.666422)));
+    assert!(close(
+        bsdf.node.props.get_spectrum("reflectance").unwrap().map(Vec3::from).unwrap(),
+        Vec3::new(0.885809, 0.698859, 0.666422)
+    ));
 }
 
 #[test]
@@ -94,8 +104,14 @@ fn defines_override_defaults() {
     let d = [("spp".to_string(), "7".to_string()), ("res".to_string(), "32".to_string())];
     let s = parse_file(&scene_path("cornell.xml"), &d).unwrap();
     let sensor = &s.children_of(ObjectTag::Sensor)[0].node;
-    assert_eq!(sensor.children_of(ObjectTag::Sampler)[0].node.props.get_int("sample_count").unwrap(), Some(7));
-    assert_eq!(sensor.children_of(ObjectTag::Film)[0].node.props.get_int("height").unwrap(), Some(32));
+    assert_eq!(
+        sensor.children_of(ObjectTag::Sampler)[0].node.props.get_int("sample_count").unwrap(),
+        Some(7)
+    );
+    assert_eq!(
+        sensor.children_of(ObjectTag::Film)[0].node.props.get_int("height").unwrap(),
+        Some(32)
+    );
 }
 
 #[test]
@@ -103,7 +119,10 @@ fn validation_scene_values() {
     let s = parse_file(&scene_path("point_normal_incidence.xml"), &[]).unwrap();
     let em = &s.children_of(ObjectTag::Emitter)[0].node;
     assert_eq!(em.props.get_point("position").unwrap(), Some(Vec3::new(0.0, 0.0, 2.0)));
-    assert_eq!(em.props.get_spectrum("intensity").unwrap().map(Vec3::from), Some(Vec3::new(10.0, 20.0, 30.0)));
+    assert_eq!(
+        em.props.get_spectrum("intensity").unwrap().map(Vec3::from),
+        Some(Vec3::new(10.0, 20.0, 30.0))
+    );
     let meter = s.ids.get("meter").unwrap();
     let d = meter.props.get_vector("direction").unwrap().unwrap();
     assert!((d.length() - 1.0).abs() < 1e-6);
@@ -118,7 +137,10 @@ fn validation_scene_values() {
     // The irradiance meter is a child of the shape.
     let meter = &s.children_of(ObjectTag::Shape)[1].node.children_of(ObjectTag::Sensor)[0].node;
     assert_eq!(meter.plugin_type, "irradiancemeter");
-    assert_eq!(meter.children_of(ObjectTag::Sampler)[0].node.props.get_int("sample_count").unwrap(), Some(16777216));
+    assert_eq!(
+        meter.children_of(ObjectTag::Sampler)[0].node.props.get_int("sample_count").unwrap(),
+        Some(16777216)
+    );
 }
 
 #[test]
@@ -199,7 +221,11 @@ fn forward_references_and_named_refs() {
 fn includes_merge_children() {
     let dir = std::env::temp_dir().join(format!("steradian-mitsuba-inc-{}", std::process::id()));
     std::fs::create_dir_all(dir.join("sub")).unwrap();
-    std::fs::write(dir.join("sub/mats.xml"), r#"<scene version="3.0.0"><bsdf type="diffuse" id="m"/></scene>"#).unwrap();
+    std::fs::write(
+        dir.join("sub/mats.xml"),
+        r#"<scene version="3.0.0"><bsdf type="diffuse" id="m"/></scene>"#,
+    )
+    .unwrap();
     std::fs::write(
         dir.join("main.xml"),
         r#"<scene version="3.0.0"><include filename="sub/mats.xml"/><shape type="sphere"><ref id="m"/></shape></scene>"#,
@@ -231,7 +257,10 @@ fn old_versions_are_upgraded() {
     let sensor = &s.children[1].node;
     assert!(sensor.props.get_transform("to_world").unwrap().is_some());
     assert_eq!(sensor.children[0].node.props.get_int("sample_count").unwrap(), Some(9));
-    assert_eq!(s.children[2].node.props.get_spectrum("reflectance").unwrap().map(Vec3::from), Some(Vec3::splat(0.2)));
+    assert_eq!(
+        s.children[2].node.props.get_spectrum("reflectance").unwrap().map(Vec3::from),
+        Some(Vec3::splat(0.2))
+    );
 }
 
 #[test]
@@ -250,9 +279,18 @@ fn spectra_and_broadcasts() {
     // A flat emitter spectrum is the equal-energy white in sRGB.
     let e = s.children[1].node.props.get_spectrum("radiance").unwrap().map(Vec3::from).unwrap();
     assert!(close(e, 2.0 * Vec3::new(1.204794, 0.948292, 0.908916)), "{e}");
-    assert_eq!(s.children[2].node.props.get_spectrum("eta").unwrap().map(Vec3::from), Some(Vec3::splat(0.2)));
-    assert_eq!(s.children[2].node.props.get_spectrum("k").unwrap().map(Vec3::from), Some(Vec3::splat(3.0)));
-    assert_eq!(s.children[3].node.props.get_spectrum("reflectance").unwrap().map(Vec3::from), Some(Vec3::splat(0.5)));
+    assert_eq!(
+        s.children[2].node.props.get_spectrum("eta").unwrap().map(Vec3::from),
+        Some(Vec3::splat(0.2))
+    );
+    assert_eq!(
+        s.children[2].node.props.get_spectrum("k").unwrap().map(Vec3::from),
+        Some(Vec3::splat(3.0))
+    );
+    assert_eq!(
+        s.children[3].node.props.get_spectrum("reflectance").unwrap().map(Vec3::from),
+        Some(Vec3::splat(0.5))
+    );
 }
 
 /// The profile-guided build's training scene (`benches/pgo/training.xml`, rendered by
@@ -272,11 +310,15 @@ fn pgo_training_scene_renders() {
     for kind in ["Dielectric", "RoughDielectric", "ThinDielectric", "Conductor", "RoughConductor"] {
         assert!(bsdfs.iter().any(|b| b.starts_with(kind)), "no {kind} BSDF in {bsdfs:?}");
     }
-    assert!(bsdfs.iter().any(|b| b.starts_with("RoughConductor") && b.contains("Ggx")), "no GGX rough conductor");
+    assert!(
+        bsdfs.iter().any(|b| b.starts_with("RoughConductor") && b.contains("Ggx")),
+        "no GGX rough conductor"
+    );
     let sphere_light = scene.emitters.iter().any(|e| matches!(e, Emitter::Area(a) if matches!(scene.shapes[a.shape as usize], Shape::Sphere(_))));
     assert!(sphere_light, "no spherical area light");
     assert!(scene.emitters.iter().any(|e| matches!(e, Emitter::Spot(_))), "no spot light");
-    let out = render(&scene, &RenderOptions { spp: Some(2), seed: Some(1), ..Default::default() }).unwrap();
+    let out = render(&scene, &RenderOptions { spp: Some(2), seed: Some(1), ..Default::default() })
+        .unwrap();
     assert_eq!(out.dropped_samples, 0);
     let m = out.film.develop().channel_means();
     assert!(m.iter().all(|x| x.is_finite() && *x > 1e-3), "channel means {m:?}");

@@ -21,7 +21,8 @@ fn assets() -> PathBuf {
 fn load(name: &str, body: &str) -> Result<steradian::scene::Scene, LoadError> {
     static CALLS: AtomicUsize = AtomicUsize::new(0);
     let call = CALLS.fetch_add(1, Ordering::Relaxed);
-    let dir = std::env::temp_dir().join(format!("steradian-textures-{}-{call}", std::process::id()));
+    let dir =
+        std::env::temp_dir().join(format!("steradian-textures-{}-{call}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     for f in ["wall.png", "leaf.jpg", "leaf_mask.png", "bumps.png", "normals.png", "light.exr"] {
         std::fs::copy(assets().join(f), dir.join(f)).unwrap();
@@ -49,7 +50,8 @@ fn err(name: &str, body: &str, line: u32, col: u32, needles: &[&str]) {
 }
 
 fn bsdf_of(body: &str) -> Bsdf {
-    let scene = load("ok.xml", &format!("<shape type=\"rectangle\">{body}</shape>")).unwrap_or_else(|e| panic!("{e}"));
+    let scene = load("ok.xml", &format!("<shape type=\"rectangle\">{body}</shape>"))
+        .unwrap_or_else(|e| panic!("{e}"));
     scene.bsdfs.last().unwrap().clone()
 }
 
@@ -62,16 +64,23 @@ fn bitmap_parameters_and_values() {
     );
     let Bsdf::Diffuse(d) = b else { panic!("{b:?}") };
     let Texture::Bitmap(t) = &d.reflectance else { panic!() };
-    assert_eq!((t.filter, t.wrap, t.resolution()), (FilterType::Nearest, WrapMode::Clamp, (64, 64)));
+    assert_eq!(
+        (t.filter, t.wrap, t.resolution()),
+        (FilterType::Nearest, WrapMode::Clamp, (64, 64))
+    );
     assert_eq!(t.to_uv.apply(Vec2::new(0.1, 0.1)), Vec2::new(0.2, 0.3));
     // Mitsuba 3.9.1 (scalar_rgb, bilinear, repeat) at uv (0.3, 0.7) of wall.png
-    let b = bsdf_of(r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="wall.png"/></texture></bsdf>"#);
+    let b = bsdf_of(
+        r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="wall.png"/></texture></bsdf>"#,
+    );
     let Bsdf::Diffuse(d) = b else { panic!() };
     let v = d.reflectance.eval(Vec2::new(0.3, 0.7));
     let mitsuba = Spectrum::new(MITSUBA_WALL[0], MITSUBA_WALL[1], MITSUBA_WALL[2]);
     assert!((v - mitsuba).abs().max_element() < 1e-3, "{v} vs {mitsuba}");
     // JPEG: decoders may differ by one code value (≈ 0.4 % after sRGB decoding)
-    let b = bsdf_of(r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/><string name="filter_type" value="nearest"/></texture></bsdf>"#);
+    let b = bsdf_of(
+        r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/><string name="filter_type" value="nearest"/></texture></bsdf>"#,
+    );
     let Bsdf::Diffuse(d) = b else { panic!() };
     let v = d.reflectance.eval(Vec2::new(0.5, 0.5));
     let mitsuba = Spectrum::new(MITSUBA_LEAF[0], MITSUBA_LEAF[1], MITSUBA_LEAF[2]);
@@ -101,15 +110,30 @@ fn textures_wherever_mitsuba_takes_them() {
     }
     // roughness textures: roughconductor and roughdielectric (alpha or alpha_u/alpha_v)
     let a = r#"<texture type="bitmap" name="NAME"><string name="filename" value="bumps.png"/><boolean name="raw" value="true"/></texture>"#;
-    let Bsdf::RoughConductor(c) = bsdf_of(&format!("<bsdf type=\"roughconductor\">{}</bsdf>", a.replace("NAME", "alpha"))) else { panic!() };
+    let Bsdf::RoughConductor(c) =
+        bsdf_of(&format!("<bsdf type=\"roughconductor\">{}</bsdf>", a.replace("NAME", "alpha")))
+    else {
+        panic!()
+    };
     let (u, v) = *c.alpha_textures.clone().unwrap();
     assert_eq!(u, v);
     assert!(matches!(u, Texture::Bitmap(_)));
-    let Bsdf::RoughDielectric(d) = bsdf_of(&format!("<bsdf type=\"roughdielectric\">{}<float name=\"alpha_v\" value=\"0.3\"/></bsdf>", a.replace("NAME", "alpha_u"))) else { panic!() };
+    let Bsdf::RoughDielectric(d) = bsdf_of(&format!(
+        "<bsdf type=\"roughdielectric\">{}<float name=\"alpha_v\" value=\"0.3\"/></bsdf>",
+        a.replace("NAME", "alpha_u")
+    )) else {
+        panic!()
+    };
     let (u, v) = *d.alpha_textures.clone().unwrap();
-    assert!(matches!((u, v), (Texture::Bitmap(_), Texture::Constant(c)) if c == Spectrum::splat(0.3)));
+    assert!(
+        matches!((u, v), (Texture::Bitmap(_), Texture::Constant(c)) if c == Spectrum::splat(0.3))
+    );
     // constant roughness keeps the plain distribution
-    let Bsdf::RoughConductor(c) = bsdf_of(r#"<bsdf type="roughconductor"><float name="alpha" value="0.2"/></bsdf>"#) else { panic!() };
+    let Bsdf::RoughConductor(c) =
+        bsdf_of(r#"<bsdf type="roughconductor"><float name="alpha" value="0.2"/></bsdf>"#)
+    else {
+        panic!()
+    };
     assert!(c.alpha_textures.is_none() && c.distribution.alpha_u == 0.2);
     // area light radiance, from a scene-level texture by reference
     let scene = load(
@@ -125,36 +149,113 @@ fn textures_wherever_mitsuba_takes_them() {
 
 #[test]
 fn adapters_load_with_mitsuba_defaults() {
-    let Bsdf::Mask(m) = bsdf_of(r#"<bsdf type="mask"><bsdf type="diffuse"/></bsdf>"#) else { panic!() };
+    let Bsdf::Mask(m) = bsdf_of(r#"<bsdf type="mask"><bsdf type="diffuse"/></bsdf>"#) else {
+        panic!()
+    };
     assert_eq!(m.opacity, Texture::Constant(Spectrum::splat(0.5)));
-    let Bsdf::Mask(m) = bsdf_of(r#"<bsdf type="mask"><texture type="bitmap" name="opacity"><string name="filename" value="leaf_mask.png"/></texture><bsdf type="diffuse"/></bsdf>"#) else { panic!() };
-    assert_eq!((m.opacity.eval_1(Vec2::new(0.5, 0.5)), m.opacity.eval_1(Vec2::new(0.01, 0.5))), (1.0, 0.0));
-    let Bsdf::BlendBsdf(b) = bsdf_of(r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>"#) else { panic!() };
+    let Bsdf::Mask(m) = bsdf_of(
+        r#"<bsdf type="mask"><texture type="bitmap" name="opacity"><string name="filename" value="leaf_mask.png"/></texture><bsdf type="diffuse"/></bsdf>"#,
+    ) else {
+        panic!()
+    };
+    assert_eq!(
+        (m.opacity.eval_1(Vec2::new(0.5, 0.5)), m.opacity.eval_1(Vec2::new(0.01, 0.5))),
+        (1.0, 0.0)
+    );
+    let Bsdf::BlendBsdf(b) = bsdf_of(
+        r#"<bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="diffuse"/><bsdf type="conductor"/></bsdf>"#,
+    ) else {
+        panic!()
+    };
     assert!(matches!((&*b.bsdf0, &*b.bsdf1), (Bsdf::Diffuse(_), Bsdf::Conductor(_))));
     assert_eq!(b.weight.eval_1(Vec2::ZERO), 0.3);
-    let Bsdf::BumpMap(b) = bsdf_of(r#"<bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="bumps.png"/><boolean name="raw" value="true"/></texture><bsdf type="roughplastic"/></bsdf>"#) else { panic!() };
+    let Bsdf::BumpMap(b) = bsdf_of(
+        r#"<bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="bumps.png"/><boolean name="raw" value="true"/></texture><bsdf type="roughplastic"/></bsdf>"#,
+    ) else {
+        panic!()
+    };
     assert_eq!(b.scale, 1.0);
-    let Bsdf::NormalMap(n) = bsdf_of(r#"<bsdf type="normalmap"><texture type="bitmap" name="normalmap"><string name="filename" value="normals.png"/><boolean name="raw" value="true"/></texture><bsdf type="diffuse"/></bsdf>"#) else { panic!() };
+    let Bsdf::NormalMap(n) = bsdf_of(
+        r#"<bsdf type="normalmap"><texture type="bitmap" name="normalmap"><string name="filename" value="normals.png"/><boolean name="raw" value="true"/></texture><bsdf type="diffuse"/></bsdf>"#,
+    ) else {
+        panic!()
+    };
     assert!(matches!(n.normals, Texture::Bitmap(_)));
 }
 
 #[test]
 fn missing_and_corrupt_images() {
     let body = "<shape type=\"rectangle\">\n<bsdf type=\"diffuse\">\n<texture type=\"bitmap\" name=\"reflectance\">\n  <string name=\"filename\" value=\"nowhere.png\"/>\n</texture></bsdf></shape>";
-    err("missing.xml", body, 7, 3, &["missing.xml:7:3", "nowhere.png", "<texture type=\"bitmap\">"]);
-    err("corrupt.xml", &body.replace("nowhere.png", "corrupt.png"), 7, 3, &["corrupt.png", "cannot read image"]);
-    err("text.xml", &body.replace("nowhere.png", "text.xml"), 7, 3, &["text.xml", "not a PNG, JPEG or OpenEXR"]);
+    err(
+        "missing.xml",
+        body,
+        7,
+        3,
+        &["missing.xml:7:3", "nowhere.png", "<texture type=\"bitmap\">"],
+    );
+    err(
+        "corrupt.xml",
+        &body.replace("nowhere.png", "corrupt.png"),
+        7,
+        3,
+        &["corrupt.png", "cannot read image"],
+    );
+    err(
+        "text.xml",
+        &body.replace("nowhere.png", "text.xml"),
+        7,
+        3,
+        &["text.xml", "not a PNG, JPEG or OpenEXR"],
+    );
 }
 
 #[test]
 fn bad_bitmap_options() {
-    let tex = |extra: &str| format!("<shape type=\"rectangle\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"wall.png\"/>\n{extra}\n</texture></bsdf></shape>");
-    err("wrap.xml", &tex("  <string name=\"wrap_mode\" value=\"wrap\"/>"), 5, 3, &["invalid wrap_mode \"wrap\"", "\"repeat\", \"mirror\", \"clamp\""]);
-    err("filter.xml", &tex("  <string name=\"filter_type\" value=\"cubic\"/>"), 5, 3, &["invalid filter_type \"cubic\"", "\"bilinear\", \"nearest\""]);
-    err("raw.xml", &tex("  <string name=\"raw\" value=\"yes\"/>"), 5, 3, &["'raw'", "must be boolean"]);
-    err("unused.xml", &tex("  <float name=\"gamma\" value=\"2.2\"/>"), 5, 3, &["unreferenced property 'gamma'"]);
-    err("nofile.xml", "<texture type=\"bitmap\" id=\"t\"/>", 4, 1, &["missing parameter 'filename'"]);
-    err("type.xml", "<texture type=\"noise\" id=\"t\"/>", 4, 1, &["unknown texture plugin type 'noise'", "bitmap, checkerboard"]);
+    let tex = |extra: &str| {
+        format!("<shape type=\"rectangle\"><bsdf type=\"diffuse\"><texture type=\"bitmap\" name=\"reflectance\"><string name=\"filename\" value=\"wall.png\"/>\n{extra}\n</texture></bsdf></shape>")
+    };
+    err(
+        "wrap.xml",
+        &tex("  <string name=\"wrap_mode\" value=\"wrap\"/>"),
+        5,
+        3,
+        &["invalid wrap_mode \"wrap\"", "\"repeat\", \"mirror\", \"clamp\""],
+    );
+    err(
+        "filter.xml",
+        &tex("  <string name=\"filter_type\" value=\"cubic\"/>"),
+        5,
+        3,
+        &["invalid filter_type \"cubic\"", "\"bilinear\", \"nearest\""],
+    );
+    err(
+        "raw.xml",
+        &tex("  <string name=\"raw\" value=\"yes\"/>"),
+        5,
+        3,
+        &["'raw'", "must be boolean"],
+    );
+    err(
+        "unused.xml",
+        &tex("  <float name=\"gamma\" value=\"2.2\"/>"),
+        5,
+        3,
+        &["unreferenced property 'gamma'"],
+    );
+    err(
+        "nofile.xml",
+        "<texture type=\"bitmap\" id=\"t\"/>",
+        4,
+        1,
+        &["missing parameter 'filename'"],
+    );
+    err(
+        "type.xml",
+        "<texture type=\"noise\" id=\"t\"/>",
+        4,
+        1,
+        &["unknown texture plugin type 'noise'", "bitmap, checkerboard"],
+    );
 }
 
 #[test]
@@ -189,8 +290,20 @@ fn mistyped_parameters() {
         &["unreferenced object <texture type=\"checkerboard\">"],
     );
     err("aniso.xml", "<shape type=\"sphere\">\n<bsdf type=\"roughconductor\"><texture type=\"checkerboard\" name=\"alpha_u\"/></bsdf></shape>", 5, 1, &["both 'alpha_u' and 'alpha_v'"]);
-    err("bumpnone.xml", "<shape type=\"sphere\">\n<bsdf type=\"bumpmap\"><bsdf type=\"diffuse\"/></bsdf></shape>", 5, 1, &["exactly one nested texture"]);
-    err("nmap.xml", "<shape type=\"sphere\">\n<bsdf type=\"normalmap\"><bsdf type=\"diffuse\"/></bsdf></shape>", 5, 1, &["missing parameter 'normalmap'"]);
+    err(
+        "bumpnone.xml",
+        "<shape type=\"sphere\">\n<bsdf type=\"bumpmap\"><bsdf type=\"diffuse\"/></bsdf></shape>",
+        5,
+        1,
+        &["exactly one nested texture"],
+    );
+    err(
+        "nmap.xml",
+        "<shape type=\"sphere\">\n<bsdf type=\"normalmap\"><bsdf type=\"diffuse\"/></bsdf></shape>",
+        5,
+        1,
+        &["missing parameter 'normalmap'"],
+    );
     err("scale.xml", "<shape type=\"sphere\"><bsdf type=\"bumpmap\"><texture type=\"bitmap\"><string name=\"filename\" value=\"bumps.png\"/></texture>\n  <string name=\"scale\" value=\"2\"/><bsdf type=\"diffuse\"/></bsdf></shape>", 5, 3, &["'scale'", "must be float"]);
 }
 
@@ -212,7 +325,6 @@ fn reference_scene_loads() {
         .collect();
     assert_eq!(kinds, ["bumpmap", "normalmap", "blendbsdf", "mask"]);
 }
-
 
 /// A floor under a small area light, seen from above, with an optional `mask` (opacity
 /// `opacity`) between them; 32×32.
@@ -238,10 +350,15 @@ fn mask_scene(integrator: &str, opacity: Option<f32>) -> String {
 /// Image means of independent renders (seeds 1..=n): their mean and standard error.
 fn mean_and_se(xml: &str, spp: u32, n: u64) -> (f64, f64) {
     use steradian::integrator::{render, RenderOptions};
-    let scene = steradian_mitsuba::load_string(xml, Path::new("mask.xml"), Path::new("."), &[]).unwrap();
+    let scene =
+        steradian_mitsuba::load_string(xml, Path::new("mask.xml"), Path::new("."), &[]).unwrap();
     let means: Vec<f64> = (1..=n)
         .map(|seed| {
-            let out = render(&scene, &RenderOptions { spp: Some(spp), seed: Some(seed), ..Default::default() }).unwrap();
+            let out = render(
+                &scene,
+                &RenderOptions { spp: Some(spp), seed: Some(seed), ..Default::default() },
+            )
+            .unwrap();
             out.film.develop().channel_means()[0]
         })
         .collect();
@@ -269,8 +386,15 @@ fn masks_in_path_and_direct_behave_as_in_mitsuba() {
 }
 
 /// Hits `shape_xml` along the ray (o, d).
-fn hit(scene: &steradian::scene::Scene, o: [f32; 3], d: [f32; 3]) -> steradian::geometry::SurfaceInteraction {
-    let ray = steradian::geometry::Ray::infinite(steradian::Vec3::from(o), steradian::Vec3::from(d).normalize());
+fn hit(
+    scene: &steradian::scene::Scene,
+    o: [f32; 3],
+    d: [f32; 3],
+) -> steradian::geometry::SurfaceInteraction {
+    let ray = steradian::geometry::Ray::infinite(
+        steradian::Vec3::from(o),
+        steradian::Vec3::from(d).normalize(),
+    );
     scene.intersect(&ray).expect("the ray must hit")
 }
 
@@ -281,18 +405,62 @@ fn dpdu_dpdv_match_mitsuba_and_finite_differences() {
     /// shape, ray origin and direction, Mitsuba's dp/du and dp/dv
     type Case = (&'static str, [f32; 3], [f32; 3], [f32; 3], [f32; 3]);
     let cases: [Case; 6] = [
-        (r#"<shape type="rectangle"><transform name="to_world"><scale x="2" y="3" z="1"/></transform></shape>"#, [0.5, 0.7, 5.0], [0.0, 0.0, -1.0], [4.0, 0.0, 0.0], [0.0, 6.0, 0.0]),
-        (r#"<shape type="disk"><transform name="to_world"><scale x="2" y="2" z="1"/></transform></shape>"#, [0.6, 0.8, 5.0], [0.0, 0.0, -1.0], [1.2, 1.6, 0.0], [-5.02655, 3.76991, 0.0]),
-        (r#"<shape type="sphere"><float name="radius" value="2"/></shape>"#, [0.6, 0.8, 5.0], [0.0, 0.0, -1.0], [-5.02655, 3.76991, 0.0], [3.26484, 4.35312, -std::f32::consts::PI]),
-        (r#"<shape type="cylinder"><float name="radius" value="2"/></shape>"#, [5.0, 0.8, 0.3], [-1.0, 0.0, 0.0], [-5.02655, 11.5173, 0.0], [0.0, 0.0, 1.0]),
-        (r#"<shape type="cube"/>"#, [0.3, 0.2, 5.0], [0.0, 0.0, -1.0], [0.0, 2.0, 0.0], [2.0, 0.0, 0.0]),
-        (r#"<shape type="cube"/>"#, [5.0, 0.3, 0.2], [-1.0, 0.0, 0.0], [0.0, 2.0, 0.0], [0.0, 0.0, -2.0]),
+        (
+            r#"<shape type="rectangle"><transform name="to_world"><scale x="2" y="3" z="1"/></transform></shape>"#,
+            [0.5, 0.7, 5.0],
+            [0.0, 0.0, -1.0],
+            [4.0, 0.0, 0.0],
+            [0.0, 6.0, 0.0],
+        ),
+        (
+            r#"<shape type="disk"><transform name="to_world"><scale x="2" y="2" z="1"/></transform></shape>"#,
+            [0.6, 0.8, 5.0],
+            [0.0, 0.0, -1.0],
+            [1.2, 1.6, 0.0],
+            [-5.02655, 3.76991, 0.0],
+        ),
+        (
+            r#"<shape type="sphere"><float name="radius" value="2"/></shape>"#,
+            [0.6, 0.8, 5.0],
+            [0.0, 0.0, -1.0],
+            [-5.02655, 3.76991, 0.0],
+            [3.26484, 4.35312, -std::f32::consts::PI],
+        ),
+        (
+            r#"<shape type="cylinder"><float name="radius" value="2"/></shape>"#,
+            [5.0, 0.8, 0.3],
+            [-1.0, 0.0, 0.0],
+            [-5.02655, 11.5173, 0.0],
+            [0.0, 0.0, 1.0],
+        ),
+        (
+            r#"<shape type="cube"/>"#,
+            [0.3, 0.2, 5.0],
+            [0.0, 0.0, -1.0],
+            [0.0, 2.0, 0.0],
+            [2.0, 0.0, 0.0],
+        ),
+        (
+            r#"<shape type="cube"/>"#,
+            [5.0, 0.3, 0.2],
+            [-1.0, 0.0, 0.0],
+            [0.0, 2.0, 0.0],
+            [0.0, 0.0, -2.0],
+        ),
     ];
     for (xml, o, d, dpdu, dpdv) in cases {
         let scene = load("dp.xml", xml).unwrap();
         let si = hit(&scene, o, d);
-        assert!((si.dpdu - Vec3::from(dpdu)).length() < 1e-4 * (1.0 + si.dpdu.length()), "{xml}: dpdu {} vs {dpdu:?}", si.dpdu);
-        assert!((si.dpdv - Vec3::from(dpdv)).length() < 1e-4 * (1.0 + si.dpdv.length()), "{xml}: dpdv {} vs {dpdv:?}", si.dpdv);
+        assert!(
+            (si.dpdu - Vec3::from(dpdu)).length() < 1e-4 * (1.0 + si.dpdu.length()),
+            "{xml}: dpdu {} vs {dpdu:?}",
+            si.dpdu
+        );
+        assert!(
+            (si.dpdv - Vec3::from(dpdv)).length() < 1e-4 * (1.0 + si.dpdv.length()),
+            "{xml}: dpdv {} vs {dpdv:?}",
+            si.dpdv
+        );
         // first order: a nearby hit moves by dpdu·Δu + dpdv·Δv
         for off in [[1e-3, 0.0, 0.0], [0.0, 1e-3, 0.0], [0.0, 0.0, 1e-3]] {
             let o2 = [o[0] + off[0], o[1] + off[1], o[2] + off[2]];
@@ -307,7 +475,9 @@ fn dpdu_dpdv_match_mitsuba_and_finite_differences() {
     }
     // a mesh without uvs is parametrised by its barycentrics: uv = (b1, b2), dpdu = p1 − p0,
     // dpdv = p2 − p0 (Mitsuba 3.9.1: uv (0.2, 0.3), dp_du (2, 0, 0), dp_dv (0, 1, 0))
-    let scene = load("dp.xml", r#"<shape type="obj"><string name="filename" value="tri.obj"/></shape>"#).unwrap();
+    let scene =
+        load("dp.xml", r#"<shape type="obj"><string name="filename" value="tri.obj"/></shape>"#)
+            .unwrap();
     let si = hit(&scene, [0.4, 0.3, 1.0], [0.0, 0.0, -1.0]);
     assert!((si.uv - Vec2::new(0.2, 0.3)).length() < 1e-6, "{}", si.uv);
     assert_eq!((si.dpdu, si.dpdv), (Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)));

@@ -10,7 +10,11 @@ fn check(name: &str) {
         "{name}: expected {:?} measured {:?} ± {:?} (z {:?}) bound {:?} in {:.2} s",
         r.expected, r.measured, r.stderr, r.z, r.bound, r.seconds
     );
-    assert!(r.pass, "{name}: measured {:?}, expected {:?} within {:?}", r.measured, r.expected, r.bound);
+    assert!(
+        r.pass,
+        "{name}: measured {:?}, expected {:?} within {:?}",
+        r.measured, r.expected, r.bound
+    );
 }
 
 macro_rules! cases {

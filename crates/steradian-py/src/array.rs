@@ -25,13 +25,16 @@ pub fn from_array(py: Python<'_>, obj: &Bound<'_, PyAny>) -> PyResult<Image> {
     let arr = np.call_method1("ascontiguousarray", (obj, np.getattr("float32")?))?;
     let shape: Vec<usize> = arr.getattr("shape")?.extract()?;
     let [h, w, 3] = shape[..] else {
-        return Err(PyValueError::new_err(format!("an image must have shape (H, W, 3), got {shape:?}")));
+        return Err(PyValueError::new_err(format!(
+            "an image must have shape (H, W, 3), got {shape:?}"
+        )));
     };
     let (Ok(w32), Ok(h32)) = (u32::try_from(w), u32::try_from(h)) else {
         return Err(PyValueError::new_err(format!("image {w}x{h} is too large")));
     };
     let bytes = arr.call_method0("tobytes")?;
     let bytes = bytes.downcast::<PyBytes>()?.as_bytes();
-    let data = bytes.chunks_exact(4).map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]])).collect();
+    let data =
+        bytes.chunks_exact(4).map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]])).collect();
     Image::from_data(w32, h32, data).map_err(PyValueError::new_err)
 }

@@ -35,7 +35,9 @@ pub fn scene_error(py: Python<'_>, e: &LoadError) -> PyErr {
 pub fn render_error(e: RenderError) -> PyErr {
     match e {
         RenderError::ThreadPool(_) => PyRuntimeError::new_err(e.to_string()),
-        RenderError::NoSensor | RenderError::BadSensor(_) | RenderError::NotACamera => PyValueError::new_err(e.to_string()),
+        RenderError::NoSensor | RenderError::BadSensor(_) | RenderError::NotACamera => {
+            PyValueError::new_err(e.to_string())
+        }
     }
 }
 

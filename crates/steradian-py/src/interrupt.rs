@@ -62,7 +62,9 @@ where
                     Ok(r) => break r,
                     Err(RecvTimeoutError::Timeout) => {}
                     Err(RecvTimeoutError::Disconnected) => {
-                        return Err(PyRuntimeError::new_err("the render thread ended without a result"))
+                        return Err(PyRuntimeError::new_err(
+                            "the render thread ended without a result",
+                        ))
                     }
                 }
                 if failure.is_none() {

@@ -56,6 +56,8 @@ fn _steradian(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_submodule(&radiometry)?;
     // make `import steradian._steradian.radiometry` (and the package's `steradian.radiometry`)
     // resolvable: a submodule made here is otherwise only an attribute
-    py.import("sys")?.getattr("modules")?.set_item("steradian._steradian.radiometry", &radiometry)?;
+    py.import("sys")?
+        .getattr("modules")?
+        .set_item("steradian._steradian.radiometry", &radiometry)?;
     Ok(())
 }

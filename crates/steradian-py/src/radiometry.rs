@@ -139,8 +139,11 @@ fn rect_parallel_corner_irradiance(radiance: f64, a: f64, b: f64, d: f64) -> f64
 }
 
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
-    m.setattr("__doc__", "Closed-form radiometry (float64): solid angles (sr), irradiance (W/m²), \
-        exitance, BRDF normalisations. Points are 3-sequences in metres, angles radians.")?;
+    m.setattr(
+        "__doc__",
+        "Closed-form radiometry (float64): solid angles (sr), irradiance (W/m²), \
+        exitance, BRDF normalisations. Points are 3-sequences in metres, angles radians.",
+    )?;
     m.add_function(wrap_pyfunction!(point_irradiance, m)?)?;
     m.add_function(wrap_pyfunction!(point_irradiance_at, m)?)?;
     m.add_function(wrap_pyfunction!(point_light_flux, m)?)?;

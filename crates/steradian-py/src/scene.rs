@@ -35,9 +35,15 @@ fn defines(defaults: Option<&Bound<'_, PyDict>>) -> PyResult<Vec<(String, String
 /// Raises `SceneError` with the file, line and column of the problem.
 #[pyfunction]
 #[pyo3(signature = (path, **defaults))]
-pub fn load_file(py: Python<'_>, path: PathBuf, defaults: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+pub fn load_file(
+    py: Python<'_>,
+    path: PathBuf,
+    defaults: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Scene> {
     let defines = defines(defaults)?;
-    let scene = py.allow_threads(|| steradian_mitsuba::load_file(&path, &defines)).map_err(|e| scene_error(py, &e))?;
+    let scene = py
+        .allow_threads(|| steradian_mitsuba::load_file(&path, &defines))
+        .map_err(|e| scene_error(py, &e))?;
     Ok(Scene { inner: Arc::new(scene), name: path.display().to_string() })
 }
 
@@ -46,10 +52,16 @@ pub fn load_file(py: Python<'_>, path: PathBuf, defaults: Option<&Bound<'_, PyDi
 /// `<string>`. Raises `SceneError`.
 #[pyfunction]
 #[pyo3(signature = (xml, /, **defaults))]
-pub fn load_string(py: Python<'_>, xml: &str, defaults: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
+pub fn load_string(
+    py: Python<'_>,
+    xml: &str,
+    defaults: Option<&Bound<'_, PyDict>>,
+) -> PyResult<Scene> {
     let defines = defines(defaults)?;
     let scene = py
-        .allow_threads(|| steradian_mitsuba::load_string(xml, Path::new("<string>"), Path::new("."), &defines))
+        .allow_threads(|| {
+            steradian_mitsuba::load_string(xml, Path::new("<string>"), Path::new("."), &defines)
+        })
         .map_err(|e| scene_error(py, &e))?;
     Ok(Scene { inner: Arc::new(scene), name: "<string>".into() })
 }
@@ -77,7 +89,9 @@ impl Scene {
             Some(SensorArg::Id(id)) => self.inner.find_sensor(&id).map_err(PyValueError::new_err),
             Some(SensorArg::Index(i)) => match usize::try_from(i) {
                 Ok(i) if i < n => Ok(i),
-                _ => Err(PyValueError::new_err(format!("sensor index {i} out of range: the scene has {n} sensor(s)"))),
+                _ => Err(PyValueError::new_err(format!(
+                    "sensor index {i} out of range: the scene has {n} sensor(s)"
+                ))),
             },
         }
     }
@@ -133,7 +147,11 @@ impl Scene {
             "radiance" => (PixelQuantity::Sensor, false),
             "irradiance" => (PixelQuantity::SurfaceIrradiance, false),
             "illuminance" => (PixelQuantity::SurfaceIrradiance, true),
-            q => return Err(PyValueError::new_err(format!("quantity must be 'radiance', 'irradiance' or 'illuminance', not '{q}'"))),
+            q => {
+                return Err(PyValueError::new_err(format!(
+                    "quantity must be 'radiance', 'irradiance' or 'illuminance', not '{q}'"
+                )))
+            }
         };
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
@@ -176,7 +194,15 @@ impl Scene {
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
         let m = run_interruptible(py, progress, |cancel, report| {
-            let opts = RenderOptions { spp, seed, threads, sensor: Some(sensor), cancel: Some(cancel), progress: Some(report), ..Default::default() };
+            let opts = RenderOptions {
+                spp,
+                seed,
+                threads,
+                sensor: Some(sensor),
+                cancel: Some(cancel),
+                progress: Some(report),
+                ..Default::default()
+            };
             measure(scene, &opts)
         })?
         .map_err(render_error)?;
@@ -193,7 +219,12 @@ impl Scene {
     #[pyo3(signature = (sensor=None))]
     fn film_size(&self, sensor: Option<SensorArg>) -> PyResult<(u32, u32)> {
         let i = self.sensor(sensor)?;
-        let f = &self.inner.sensors.get(i).ok_or_else(|| PyValueError::new_err("the scene has no sensor"))?.film;
+        let f = &self
+            .inner
+            .sensors
+            .get(i)
+            .ok_or_else(|| PyValueError::new_err("the scene has no sensor"))?
+            .film;
         Ok((f.width, f.height))
     }
 

@@ -37,7 +37,9 @@ fn cube_sphere(n: u32) -> Shape {
             }
         }
     }
-    Shape::Mesh(Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, true).expect("valid mesh"))
+    Shape::Mesh(
+        Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, true).expect("valid mesh"),
+    )
 }
 
 fn uniform_sphere(rng: &mut Pcg32) -> Vec3 {

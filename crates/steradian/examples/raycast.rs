@@ -52,9 +52,14 @@ fn load_mesh(path: &str) -> (Vec<Vec3>, Vec<[u32; 3]>) {
     }
     let (nv, nt) = (u32_at(&b, 8) as usize, u32_at(&b, 12) as usize);
     if b.len() != 16 + 12 * nv + 12 * nt {
-        die(format!("{path}: expected {} bytes for {nv} vertices and {nt} triangles", 16 + 12 * nv + 12 * nt));
+        die(format!(
+            "{path}: expected {} bytes for {nv} vertices and {nt} triangles",
+            16 + 12 * nv + 12 * nt
+        ));
     }
-    let v = (0..nv).map(|i| Vec3::from_array(std::array::from_fn(|k| f32_at(&b, 16 + 12 * i + 4 * k)))).collect();
+    let v = (0..nv)
+        .map(|i| Vec3::from_array(std::array::from_fn(|k| f32_at(&b, 16 + 12 * i + 4 * k))))
+        .collect();
     let base = 16 + 12 * nv;
     let t = (0..nt).map(|i| std::array::from_fn(|k| u32_at(&b, base + 12 * i + 4 * k))).collect();
     (v, t)
@@ -94,29 +99,40 @@ fn process_cpu_s() -> f64 {
 }
 
 /// Traces all rays on `pool`; returns seconds. `t[i]`: distance (∞ miss) or 1/0 occluded.
-fn trace(pool: &rayon::ThreadPool, accel: &Accel, shapes: &[Shape], rays: &[Ray32], occlusion: bool, t: &mut [f32], prim: &mut [u32]) -> f64 {
+fn trace(
+    pool: &rayon::ThreadPool,
+    accel: &Accel,
+    shapes: &[Shape],
+    rays: &[Ray32],
+    occlusion: bool,
+    t: &mut [f32],
+    prim: &mut [u32],
+) -> f64 {
     use rayon::prelude::*;
     let start = Instant::now();
     pool.install(|| {
-        rays.par_chunks(CHUNK).zip(t.par_chunks_mut(CHUNK)).zip(prim.par_chunks_mut(CHUNK)).for_each(|((rays, t), prim)| {
-            for ((r, t), p) in rays.iter().zip(t).zip(prim) {
-                let ray = Ray::new(Vec3::from_array(r.o), Vec3::from_array(r.d), r.t_far);
-                if occlusion {
-                    *t = accel.occluded_from(shapes, &ray, r.t_near) as u32 as f32;
-                } else {
-                    match accel.intersect_from(shapes, &ray, r.t_near) {
-                        Some(h) => {
-                            *t = h.t;
-                            *p = h.prim;
-                        }
-                        None => {
-                            *t = f32::INFINITY;
-                            *p = u32::MAX;
+        rays.par_chunks(CHUNK)
+            .zip(t.par_chunks_mut(CHUNK))
+            .zip(prim.par_chunks_mut(CHUNK))
+            .for_each(|((rays, t), prim)| {
+                for ((r, t), p) in rays.iter().zip(t).zip(prim) {
+                    let ray = Ray::new(Vec3::from_array(r.o), Vec3::from_array(r.d), r.t_far);
+                    if occlusion {
+                        *t = accel.occluded_from(shapes, &ray, r.t_near) as u32 as f32;
+                    } else {
+                        match accel.intersect_from(shapes, &ray, r.t_near) {
+                            Some(h) => {
+                                *t = h.t;
+                                *p = h.prim;
+                            }
+                            None => {
+                                *t = f32::INFINITY;
+                                *p = u32::MAX;
+                            }
                         }
                     }
                 }
-            }
-        })
+            })
     });
     start.elapsed().as_secs_f64()
 }
@@ -125,7 +141,8 @@ fn main() {
     let mut data = None;
     let mut reference = None;
     let mut threads = vec![1usize, 2];
-    let mut sets: Vec<String> = ["primary", "diffuse", "bounce", "shadow"].map(String::from).to_vec();
+    let mut sets: Vec<String> =
+        ["primary", "diffuse", "bounce", "shadow"].map(String::from).to_vec();
     let mut isa = Isa::detect();
     let mut repeat = 1usize;
     let mut name = None;
@@ -136,7 +153,12 @@ fn main() {
             "--data" => data = Some(val()),
             "--reference" => reference = Some(val()),
             "--name" => name = Some(val()),
-            "--threads" => threads = val().split(',').map(|s| s.parse().unwrap_or_else(|_| die(format!("bad thread count '{s}'")))).collect(),
+            "--threads" => {
+                threads = val()
+                    .split(',')
+                    .map(|s| s.parse().unwrap_or_else(|_| die(format!("bad thread count '{s}'"))))
+                    .collect()
+            }
             "--sets" => sets = val().split(',').map(String::from).collect(),
             "--repeat" => repeat = val().parse().unwrap_or_else(|_| die("bad --repeat".into())),
             "--isa" => {
@@ -158,7 +180,8 @@ fn main() {
 
     let (positions, indices) = load_mesh(&format!("{data}.mesh"));
     let (nv, nt) = (positions.len(), indices.len());
-    let mesh = Mesh::new(positions, None, None, indices, &Transform::IDENTITY, false, true).unwrap_or_else(|e| die(format!("{data}.mesh: {e}")));
+    let mesh = Mesh::new(positions, None, None, indices, &Transform::IDENTITY, false, true)
+        .unwrap_or_else(|e| die(format!("{data}.mesh: {e}")));
     let shapes = vec![Shape::Mesh(mesh)];
     // build once untimed (page faults, thread-pool start), then time the best of 3
     let mut accel = Accel::build_with_isa(&shapes, isa);
@@ -190,7 +213,10 @@ fn main() {
         let mut t = vec![0.0f32; rays.len()];
         let mut prim = vec![0u32; rays.len()];
         for &th in &threads {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(th).build().unwrap_or_else(|e| die(format!("thread pool: {e}")));
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(th)
+                .build()
+                .unwrap_or_else(|e| die(format!("thread pool: {e}")));
             let (mut sec, mut cpu_util) = (f64::INFINITY, 0.0);
             for _ in 0..repeat.max(1) {
                 let cpu0 = process_cpu_s();
@@ -235,7 +261,9 @@ fn main() {
                         dist_differ += 1;
                     }
                 }
-                line += &format!(" vs_embree_decision_differs={differ} vs_embree_distance_differs={dist_differ}");
+                line += &format!(
+                    " vs_embree_decision_differs={differ} vs_embree_distance_differs={dist_differ}"
+                );
             }
             println!("{line}");
         }

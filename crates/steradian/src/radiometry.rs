@@ -221,7 +221,12 @@ mod tests {
         assert!(close(sphere_solid_angle(r, dist), cone_solid_angle((r / dist).asin()), 1e-12));
         // the whole hemisphere seen by a triangle fan around a point just above a huge plane
         let big = 1e7;
-        let h = triangle_solid_angle(DVec3::new(0.0, 0.0, 1.0), DVec3::new(-big, -big, 0.0), DVec3::new(big, -big, 0.0), DVec3::new(0.0, big, 0.0));
+        let h = triangle_solid_angle(
+            DVec3::new(0.0, 0.0, 1.0),
+            DVec3::new(-big, -big, 0.0),
+            DVec3::new(big, -big, 0.0),
+            DVec3::new(0.0, big, 0.0),
+        );
         assert!(close(h, 2.0 * PI, 1e-5), "{h}");
     }
 
@@ -230,9 +235,18 @@ mod tests {
         // a disk subtending half-angle θ gives L·π·sin²θ on axis
         let (l, r, h) = (2.0f64, 0.5f64, 1.2f64);
         let theta = (r / h).atan();
-        assert!(close(disk_on_axis_irradiance(l, r, h), l * cone_projected_solid_angle(theta), 1e-12));
+        assert!(close(
+            disk_on_axis_irradiance(l, r, h),
+            l * cone_projected_solid_angle(theta),
+            1e-12
+        ));
         // inverse square and cosine
-        let e = point_irradiance(100.0, DVec3::new(0.0, 0.0, 2.0), DVec3::ZERO, DVec3::new(0.0, 60f64.to_radians().sin(), 60f64.to_radians().cos()));
+        let e = point_irradiance(
+            100.0,
+            DVec3::new(0.0, 0.0, 2.0),
+            DVec3::ZERO,
+            DVec3::new(0.0, 60f64.to_radians().sin(), 60f64.to_radians().cos()),
+        );
         assert!(close(e, 12.5, 1e-12));
         // a point behind the surface receives nothing
         assert_eq!(point_irradiance(1.0, DVec3::new(0.0, 0.0, -1.0), DVec3::ZERO, DVec3::Z), 0.0);

@@ -91,17 +91,28 @@ impl Scene {
             if let Some(e) = b.emitter {
                 match desc.emitters.get(e as usize) {
                     Some(Emitter::Area(a)) if a.shape as usize == i => {}
-                    _ => return Err(format!("shape {i} refers to emitter {e}, which is not its area light")),
+                    _ => {
+                        return Err(format!(
+                            "shape {i} refers to emitter {e}, which is not its area light"
+                        ))
+                    }
                 }
             }
         }
-        let envs: Vec<u32> = desc.emitters.iter().enumerate().filter(|(_, e)| e.is_environment()).map(|(i, _)| i as u32).collect();
+        let envs: Vec<u32> = desc
+            .emitters
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| e.is_environment())
+            .map(|(i, _)| i as u32)
+            .collect();
         if envs.len() > 1 {
             return Err("only one environment emitter (`constant`) is allowed per scene".into());
         }
         let integrator = desc.integrator.ok_or("the scene has no integrator")?;
         let accel = Accel::build(&shapes);
-        let (light_pmf, light_cdf) = integrator.light_selection().distribution(&desc.emitters, &shapes, accel.bounds());
+        let (light_pmf, light_cdf) =
+            integrator.light_selection().distribution(&desc.emitters, &shapes, accel.bounds());
         Ok(Scene {
             last_vertex: LastVertexLights::of(&desc.emitters),
             light_pmf,
@@ -171,7 +182,10 @@ impl Scene {
         // invert the CDF, then reuse u.x's position inside the chosen interval
         let index = self.light_cdf.partition_point(|&c| c <= u.x).min(count - 1);
         let lo = if index == 0 { 0.0 } else { self.light_cdf[index - 1] };
-        let u = Vec2::new(((u.x - lo) / self.light_pmf[index]).clamp(0.0, 1.0 - f32::EPSILON / 2.0), u.y);
+        let u = Vec2::new(
+            ((u.x - lo) / self.light_pmf[index]).clamp(0.0, 1.0 - f32::EPSILON / 2.0),
+            u.y,
+        );
         let emitter = &self.emitters[index];
         let mut es = emitter.sample_direction(&self.shapes, p, u)?;
         let sel = self.emitter_selection_pdf(index as u32);
@@ -191,7 +205,10 @@ impl Scene {
     pub fn light_sampling_suffices(&self, bsdf: &Bsdf, p: Vec3) -> bool {
         match self.last_vertex {
             LastVertexLights::Unreachable => true,
-            LastVertexLights::CheckEach => bsdf.is_lambertian() && self.emitters.iter().all(|e| e.light_sampling_bounded(&self.shapes, p)),
+            LastVertexLights::CheckEach => {
+                bsdf.is_lambertian()
+                    && self.emitters.iter().all(|e| e.light_sampling_bounded(&self.shapes, p))
+            }
             LastVertexLights::Mis => false,
         }
     }
@@ -216,7 +233,8 @@ impl Scene {
     /// from `p` proposes direction `wi` reaching emitter `e` at the point `light`.
     #[inline]
     pub fn pdf_emitter_direction(&self, e: u32, p: Vec3, wi: Vec3, light: &SurfacePoint) -> f32 {
-        self.emitters[e as usize].pdf_direction(&self.shapes, p, wi, light) * self.emitter_selection_pdf(e)
+        self.emitters[e as usize].pdf_direction(&self.shapes, p, wi, light)
+            * self.emitter_selection_pdf(e)
     }
 
     /// Index of the sensor with the given `id`.
@@ -227,9 +245,12 @@ impl Scene {
     /// Index of the sensor with the given `id`, or an error that lists the ids there are.
     pub fn find_sensor(&self, id: &str) -> Result<usize, String> {
         self.sensor_index(id).ok_or_else(|| {
-            let ids: Vec<&str> = self.sensors.iter().map(|s| s.id.as_str()).filter(|s| !s.is_empty()).collect();
-            format!("the scene has no sensor with id '{id}' (sensor ids: {})", if ids.is_empty() { "none".into() } else { ids.join(", ") })
+            let ids: Vec<&str> =
+                self.sensors.iter().map(|s| s.id.as_str()).filter(|s| !s.is_empty()).collect();
+            format!(
+                "the scene has no sensor with id '{id}' (sensor ids: {})",
+                if ids.is_empty() { "none".into() } else { ids.join(", ") }
+            )
         })
     }
 }
-

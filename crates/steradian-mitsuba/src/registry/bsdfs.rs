@@ -9,9 +9,9 @@ use std::sync::Arc;
 
 use steradian::bsdf::ior::{conductor_preset, lookup_ior};
 use steradian::bsdf::{
-    BlendBsdf, Bsdf, BumpMap, Conductor, Mask, NormalMap, PerturbOptions, Dielectric, Diffuse, InternalScattering, MicrofacetDistribution,
-    MicrofacetKind, Plastic, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric,
-    TwoSided,
+    BlendBsdf, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, InternalScattering, Mask,
+    MicrofacetDistribution, MicrofacetKind, NormalMap, PerturbOptions, Plastic, RoughConductor,
+    RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
 use steradian::bsdf::{Merl, MerlTable, Phong};
 use steradian::texture::Texture;
@@ -50,8 +50,14 @@ fn nested_bsdfs(b: &Builder, node: &PluginNode) -> Result<Vec<Bsdf>, LoadError> 
 fn perturb_options(node: &PluginNode) -> Result<PerturbOptions, LoadError> {
     let d = PerturbOptions::default();
     Ok(PerturbOptions {
-        flip_invalid_normals: node.props.get_bool("flip_invalid_normals")?.unwrap_or(d.flip_invalid_normals),
-        use_shadowing_function: node.props.get_bool("use_shadowing_function")?.unwrap_or(d.use_shadowing_function),
+        flip_invalid_normals: node
+            .props
+            .get_bool("flip_invalid_normals")?
+            .unwrap_or(d.flip_invalid_normals),
+        use_shadowing_function: node
+            .props
+            .get_bool("use_shadowing_function")?
+            .unwrap_or(d.use_shadowing_function),
     })
 }
 
@@ -67,19 +73,15 @@ fn one_nested(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 /// An IOR given as a number or as a name from Mitsuba's table (`int_ior`, `ext_ior`).
 fn ior(node: &PluginNode, name: &str, default: &str) -> Result<f32, LoadError> {
     let p = &node.props;
-    let pos = p
-        .position(name)
-        .cloned()
-        .unwrap_or_else(|| node.pos.clone());
+    let pos = p.position(name).cloned().unwrap_or_else(|| node.pos.clone());
     let value = match p.get(name) {
         None => lookup_ior(default),
         Some(PropertyValue::Float(f)) => Ok(*f as f32),
         Some(PropertyValue::Int(i)) => Ok(*i as f32),
         Some(PropertyValue::String(s)) => lookup_ior(s),
-        Some(v) => Err(format!(
-            "property '{name}' must be a float or an IOR name, got {}",
-            v.type_name()
-        )),
+        Some(v) => {
+            Err(format!("property '{name}' must be a float or an IOR name, got {}", v.type_name()))
+        }
     };
     let v = value.map_err(|m| LoadError::at(&pos, format!("{}: {m}", node.desc())))?;
     if v.is_nan() || v <= 0.0 || v.is_infinite() {
@@ -98,10 +100,7 @@ fn relative_ior(node: &PluginNode) -> Result<f32, LoadError> {
 
 /// A constant spectrum parameter with a default.
 fn spectrum(node: &PluginNode, name: &str, default: f32) -> Result<Spectrum, LoadError> {
-    Ok(node
-        .props
-        .get_spectrum(name)?
-        .unwrap_or(Spectrum::splat(default)))
+    Ok(node.props.get_spectrum(name)?.unwrap_or(Spectrum::splat(default)))
 }
 
 /// Conductor IOR: `material` preset (default `none`: η 0, k 1) or explicit `eta`/`k`.
@@ -110,9 +109,7 @@ fn conductor_ior(node: &PluginNode) -> Result<(Spectrum, Spectrum), LoadError> {
     let material = p.get_string("material")?.unwrap_or_else(|| "none".into());
     if p.contains("eta") || material == "none" {
         if material != "none" {
-            return Err(at(node)(
-                "specify either (eta, k) or material, not both".into(),
-            ));
+            return Err(at(node)("specify either (eta, k) or material, not both".into()));
         }
         Ok((spectrum(node, "eta", 0.0)?, spectrum(node, "k", 1.0)?))
     } else {
@@ -126,13 +123,13 @@ type AlphaTextures = Option<(Texture, Texture)>;
 /// `distribution`, `alpha` or `alpha_u`/`alpha_v`, `sample_visible`. With `textures`
 /// (roughconductor, roughdielectric) the roughness may be a texture, as in Mitsuba;
 /// roughplastic takes numbers only (Mitsuba precomputes tables for its α).
-fn microfacet(b: &Builder, node: &PluginNode, textures: bool) -> Result<(MicrofacetDistribution, AlphaTextures), LoadError> {
+fn microfacet(
+    b: &Builder,
+    node: &PluginNode,
+    textures: bool,
+) -> Result<(MicrofacetDistribution, AlphaTextures), LoadError> {
     let p = &node.props;
-    let kind = match p
-        .get_string("distribution")?
-        .map(|s| s.to_lowercase())
-        .as_deref()
-    {
+    let kind = match p.get_string("distribution")?.map(|s| s.to_lowercase()).as_deref() {
         None | Some("beckmann") => MicrofacetKind::Beckmann,
         Some("ggx") => MicrofacetKind::Ggx,
         Some(other) => {
@@ -142,7 +139,9 @@ fn microfacet(b: &Builder, node: &PluginNode, textures: bool) -> Result<(Microfa
         }
     };
     let sample_visible = p.get_bool("sample_visible")?.unwrap_or(true);
-    let given = |n: &str| p.contains(n) || (textures && node.children.iter().any(|c| c.name.as_deref() == Some(n)));
+    let given = |n: &str| {
+        p.contains(n) || (textures && node.children.iter().any(|c| c.name.as_deref() == Some(n)))
+    };
     let alpha = |n: &str| -> Result<Texture, LoadError> {
         if textures {
             texture_param(b, node, n, Some(0.1))
@@ -152,14 +151,10 @@ fn microfacet(b: &Builder, node: &PluginNode, textures: bool) -> Result<(Microfa
     };
     let (tu, tv) = if given("alpha_u") || given("alpha_v") {
         if !(given("alpha_u") && given("alpha_v")) {
-            return Err(at(node)(
-                "both 'alpha_u' and 'alpha_v' must be specified".into(),
-            ));
+            return Err(at(node)("both 'alpha_u' and 'alpha_v' must be specified".into()));
         }
         if given("alpha") {
-            return Err(at(node)(
-                "specify either 'alpha' or 'alpha_u'/'alpha_v', not both".into(),
-            ));
+            return Err(at(node)("specify either 'alpha' or 'alpha_u'/'alpha_v', not both".into()));
         }
         (alpha("alpha_u")?, alpha("alpha_v")?)
     } else {
@@ -185,15 +180,11 @@ fn microfacet(b: &Builder, node: &PluginNode, textures: bool) -> Result<(Microfa
 pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
     let p = &node.props;
     let bsdf = match node.plugin_type.as_str() {
-        "diffuse" => {
-            Bsdf::Diffuse(Diffuse::new(texture_param(b, node, "reflectance", Some(0.5))?))
-        }
+        "diffuse" => Bsdf::Diffuse(Diffuse::new(texture_param(b, node, "reflectance", Some(0.5))?)),
         "twosided" => {
             let children = node.children_of(ObjectTag::Bsdf);
-            let built: Vec<Bsdf> = children
-                .iter()
-                .map(|c| build(b, &c.node))
-                .collect::<Result<_, _>>()?;
+            let built: Vec<Bsdf> =
+                children.iter().map(|c| build(b, &c.node)).collect::<Result<_, _>>()?;
             if built.iter().any(|b| matches!(b, Bsdf::TwoSided(_))) {
                 return Err(LoadError::at(
                     &node.pos,
@@ -224,7 +215,12 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
         "roughconductor" => {
             let (eta, k) = conductor_ior(node)?;
             let (d, alpha) = microfacet(b, node, true)?;
-            let mut c = RoughConductor::new(d, eta, k, texture_param(b, node, "specular_reflectance", Some(1.0))?);
+            let mut c = RoughConductor::new(
+                d,
+                eta,
+                k,
+                texture_param(b, node, "specular_reflectance", Some(1.0))?,
+            );
             if let Some((u, v)) = alpha {
                 c = c.with_alpha_textures(u, v);
             }
@@ -239,9 +235,7 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
                 "thindielectric" => Bsdf::ThinDielectric(ThinDielectric::new(eta, r, t)),
                 _ => {
                     if eta == 1.0 {
-                        return Err(at(node)(
-                            "the interior and exterior IORs must differ".into(),
-                        ));
+                        return Err(at(node)("the interior and exterior IORs must differ".into()));
                     }
                     let (d, alpha) = microfacet(b, node, true)?;
                     let mut rd = RoughDielectric::new(d, eta, r, t);
@@ -266,9 +260,7 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
                 Bsdf::Plastic(Plastic::new(eta, diffuse, specular, internal))
             } else {
                 if eta == 1.0 {
-                    return Err(at(node)(
-                        "the interior and exterior IORs must differ".into(),
-                    ));
+                    return Err(at(node)("the interior and exterior IORs must differ".into()));
                 }
                 let (d, _) = microfacet(b, node, false)?;
                 if !d.is_isotropic() {
@@ -283,9 +275,10 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
             let diffuse = texture_param(b, node, "diffuse_reflectance", Some(0.5))?;
             let specular = texture_param(b, node, "specular_reflectance", Some(0.2))?;
             let exponent = p.get_float("exponent")?.unwrap_or(30.0);
-            Phong::new(diffuse, specular, exponent)
-                .map(Bsdf::Phong)
-                .map_err(at_property(node, &["exponent", "diffuse_reflectance", "specular_reflectance"]))?
+            Phong::new(diffuse, specular, exponent).map(Bsdf::Phong).map_err(at_property(
+                node,
+                &["exponent", "diffuse_reflectance", "specular_reflectance"],
+            ))?
         }
         "merl" => {
             let file = p
@@ -294,7 +287,10 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
             let path = b.resolve_path(node, &file);
             // errors reading the file are placed at its `filename`
             let table = MerlTable::read(&path).map_err(|m| {
-                LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
+                LoadError::at(
+                    p.position("filename").unwrap_or(&node.pos),
+                    format!("{}: {m}", node.desc()),
+                )
             })?;
             Bsdf::Merl(Merl::new(table))
         }
@@ -306,13 +302,18 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
             let weight = texture_param(b, node, "weight", None)?;
             match <[Bsdf; 2]>::try_from(nested_bsdfs(b, node)?) {
                 Ok([b0, b1]) => Bsdf::BlendBsdf(BlendBsdf::new(weight, b0, b1)),
-                Err(v) => return Err(at(node)(format!("expects two nested BSDFs, got {}", v.len()))),
+                Err(v) => {
+                    return Err(at(node)(format!("expects two nested BSDFs, got {}", v.len())))
+                }
             }
         }
         "bumpmap" => {
             let textures = node.children_of(ObjectTag::Texture);
             if textures.len() != 1 {
-                return Err(at(node)(format!("expects exactly one nested texture (the height), got {}", textures.len())));
+                return Err(at(node)(format!(
+                    "expects exactly one nested texture (the height), got {}",
+                    textures.len()
+                )));
             }
             let height = textures::build(b, &textures[0].node)?;
             let scale = p.get_float("scale")?.unwrap_or(1.0);
@@ -320,7 +321,11 @@ pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadErr
                 return Err(at(node)(format!("scale must be finite, got {scale}")));
             }
             let nested = one_nested(b, node)?;
-            Bsdf::BumpMap(BumpMap::new(height, scale, nested, perturb_options(node)?).map_err(|m| LoadError::at(textures[0].pos(), format!("{}: {m}", node.desc())))?)
+            Bsdf::BumpMap(
+                BumpMap::new(height, scale, nested, perturb_options(node)?).map_err(|m| {
+                    LoadError::at(textures[0].pos(), format!("{}: {m}", node.desc()))
+                })?,
+            )
         }
         "normalmap" => {
             let normals = texture_param(b, node, "normalmap", None)?;
@@ -378,10 +383,7 @@ mod tests {
                 Bsdf::Dielectric(d) => d.eta,
                 Bsdf::ThinDielectric(d) => d.eta,
                 Bsdf::RoughDielectric(d) => {
-                    assert_eq!(
-                        d.distribution.kind,
-                        steradian::bsdf::MicrofacetKind::Beckmann
-                    );
+                    assert_eq!(d.distribution.kind, steradian::bsdf::MicrofacetKind::Beckmann);
                     d.eta
                 }
                 b => panic!("{b:?}"),
@@ -397,11 +399,7 @@ mod tests {
         ) {
             Bsdf::RoughDielectric(d) => {
                 assert_eq!(
-                    (
-                        d.distribution.alpha_u,
-                        d.distribution.alpha_v,
-                        d.distribution.sample_visible
-                    ),
+                    (d.distribution.alpha_u, d.distribution.alpha_v, d.distribution.sample_visible),
                     (0.2, 0.4, false)
                 );
                 assert!((d.eta - 1.333).abs() < 1e-6);
@@ -412,7 +410,9 @@ mod tests {
             r#"<bsdf type="conductor"><string name="material" value="Au"/><rgb name="specular_reflectance" value="0.5"/></bsdf>"#,
         ) {
             Bsdf::Conductor(c) => {
-                assert!((c.ior.eta().x - 0.143036).abs() < 1e-6 && (c.ior.k().x - 3.983).abs() < 1e-6)
+                assert!(
+                    (c.ior.eta().x - 0.143036).abs() < 1e-6 && (c.ior.k().x - 3.983).abs() < 1e-6
+                )
             }
             b => panic!("{b:?}"),
         }
@@ -428,10 +428,7 @@ mod tests {
     fn errors() {
         let e = load(r#"<bsdf type="dielectric"><string name="int_ior" value="glass"/></bsdf>"#)
             .unwrap_err();
-        assert!(
-            e.contains("glass") && e.contains("bk7") && e.contains("diamond"),
-            "{e}"
-        );
+        assert!(e.contains("glass") && e.contains("bk7") && e.contains("diamond"), "{e}");
         let e = load(r#"<bsdf type="roughconductor"><float name="alpha" value="0.1"/><float name="alpha_u" value="0.1"/><float name="alpha_v" value="0.2"/></bsdf>"#).unwrap_err();
         assert!(e.contains("alpha"), "{e}");
         let e = load(r#"<bsdf type="roughdielectric"><float name="alpha_u" value="0.1"/></bsdf>"#)
@@ -462,7 +459,10 @@ mod tests {
                 Bsdf::Plastic(p) => (p.eta, p.internal),
                 Bsdf::RoughPlastic(p) => {
                     let d = p.distribution;
-                    assert_eq!((d.kind, d.alpha_u), (steradian::bsdf::MicrofacetKind::Beckmann, 0.1));
+                    assert_eq!(
+                        (d.kind, d.alpha_u),
+                        (steradian::bsdf::MicrofacetKind::Beckmann, 0.1)
+                    );
                     (p.eta, p.internal)
                 }
                 b => panic!("{b:?}"),
@@ -470,9 +470,14 @@ mod tests {
             assert!((eta - 1.49 / 1.000277).abs() < 1e-6, "{t}: {eta}");
             assert_eq!(internal, steradian::bsdf::InternalScattering::Linear);
         }
-        match one(r#"<bsdf type="roughplastic"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/><boolean name="nonlinear" value="true"/><rgb name="diffuse_reflectance" value="0.1, 0.2, 0.3"/><float name="int_ior" value="1.6"/></bsdf>"#) {
+        match one(
+            r#"<bsdf type="roughplastic"><string name="distribution" value="ggx"/><float name="alpha" value="0.3"/><boolean name="nonlinear" value="true"/><rgb name="diffuse_reflectance" value="0.1, 0.2, 0.3"/><float name="int_ior" value="1.6"/></bsdf>"#,
+        ) {
             Bsdf::RoughPlastic(p) => {
-                assert_eq!((p.distribution.kind, p.distribution.alpha_u), (steradian::bsdf::MicrofacetKind::Ggx, 0.3));
+                assert_eq!(
+                    (p.distribution.kind, p.distribution.alpha_u),
+                    (steradian::bsdf::MicrofacetKind::Ggx, 0.3)
+                );
                 assert_eq!(p.internal, steradian::bsdf::InternalScattering::Nonlinear);
             }
             b => panic!("{b:?}"),
@@ -481,7 +486,8 @@ mod tests {
         assert!(e.contains("isotropic") && e.contains("t.xml:1:"), "{e}");
         let e = load(r#"<bsdf type="roughplastic"><float name="int_ior" value="1.0"/><float name="ext_ior" value="1.0"/></bsdf>"#).unwrap_err();
         assert!(e.contains("differ"), "{e}");
-        let e = load(r#"<bsdf type="plastic"><float name="alpha" value="0.1"/></bsdf>"#).unwrap_err();
+        let e =
+            load(r#"<bsdf type="plastic"><float name="alpha" value="0.1"/></bsdf>"#).unwrap_err();
         assert!(e.contains("unreferenced"), "{e}");
     }
 

@@ -1,7 +1,9 @@
 //! Emitter plugins: `area` (attached to a shape), `point`, `spot`, `directional`,
 //! `constant`.
 
-use steradian::emitter::{AreaLight, ConstantEnvironment, DirectionalLight, Emitter, PointLight, SpotLight};
+use steradian::emitter::{
+    AreaLight, ConstantEnvironment, DirectionalLight, Emitter, PointLight, SpotLight,
+};
 use steradian::geometry::Transform;
 use steradian::{Spectrum, Vec3};
 
@@ -12,7 +14,11 @@ use crate::xml::PluginNode;
 const STANDALONE: &[&str] = &["point", "spot", "directional", "constant"];
 
 /// The `area` emitter of shape number `shape`.
-pub(crate) fn build_area(b: &super::Builder, node: &PluginNode, shape: u32) -> Result<Emitter, LoadError> {
+pub(crate) fn build_area(
+    b: &super::Builder,
+    node: &PluginNode,
+    shape: u32,
+) -> Result<Emitter, LoadError> {
     if node.plugin_type != "area" {
         return Err(LoadError::at(
             &node.pos,
@@ -30,7 +36,10 @@ pub(crate) fn build_area(b: &super::Builder, node: &PluginNode, shape: u32) -> R
 fn check_non_negative(node: &PluginNode, name: &str, v: Spectrum) -> Result<(), LoadError> {
     if !v.is_finite() || v.min_element() < 0.0 {
         let pos = node.props.position(name).unwrap_or(&node.pos);
-        return Err(LoadError::at(pos, format!("{}: '{name}' must be finite and non-negative, got {v}", node.desc())));
+        return Err(LoadError::at(
+            pos,
+            format!("{}: '{name}' must be finite and non-negative, got {v}", node.desc()),
+        ));
     }
     Ok(())
 }
@@ -66,24 +75,40 @@ pub(crate) fn build_standalone(node: &PluginNode) -> Result<Emitter, LoadError> 
             let beam = p.get_float("beam_width")?.unwrap_or(cutoff * 0.75);
             // Checked here in the user's degrees (the core's check, in radians, would echo
             // 30° back as 30.000002°).
-            let prop_err = |name: &str, msg: String| LoadError::at(p.position(name).unwrap_or(&node.pos), format!("{}: {msg}", node.desc()));
+            let prop_err = |name: &str, msg: String| {
+                LoadError::at(
+                    p.position(name).unwrap_or(&node.pos),
+                    format!("{}: {msg}", node.desc()),
+                )
+            };
             if !(cutoff > 0.0 && cutoff <= 180.0) {
-                return Err(prop_err("cutoff_angle", format!("cutoff_angle must lie in (0°, 180°], got {cutoff}°")));
+                return Err(prop_err(
+                    "cutoff_angle",
+                    format!("cutoff_angle must lie in (0°, 180°], got {cutoff}°"),
+                ));
             }
             if !(beam > 0.0 && beam <= cutoff) {
                 let name = if p.contains("beam_width") { "beam_width" } else { "cutoff_angle" };
-                return Err(prop_err(name, format!("beam_width must lie in (0°, cutoff_angle = {cutoff}°], got {beam}°")));
+                return Err(prop_err(
+                    name,
+                    format!("beam_width must lie in (0°, cutoff_angle = {cutoff}°], got {beam}°"),
+                ));
             }
             let to_world = p.get_transform("to_world")?.unwrap_or_default();
-            Emitter::Spot(SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians())
-                .map_err(at_property(node, &["beam_width", "cutoff_angle"]))?)
+            Emitter::Spot(
+                SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians())
+                    .map_err(at_property(node, &["beam_width", "cutoff_angle"]))?,
+            )
         }
         "directional" => {
             let irradiance = p.get_spectrum("irradiance")?.unwrap_or(Spectrum::ONE);
             check_non_negative(node, "irradiance", irradiance)?;
             let direction = match (p.get_vector("direction")?, p.get_transform("to_world")?) {
                 (Some(_), Some(_)) => {
-                    return Err(LoadError::at(&node.pos, format!("{}: give only one of 'direction' and 'to_world'", node.desc())))
+                    return Err(LoadError::at(
+                        &node.pos,
+                        format!("{}: give only one of 'direction' and 'to_world'", node.desc()),
+                    ))
                 }
                 (Some(d), None) => d,
                 (None, Some(t)) => t.vector(Vec3::Z),
@@ -97,7 +122,10 @@ pub(crate) fn build_standalone(node: &PluginNode) -> Result<Emitter, LoadError> 
             Emitter::Constant(ConstantEnvironment::new(radiance))
         }
         "area" => {
-            return Err(LoadError::at(&node.pos, "an 'area' emitter must be nested inside the <shape> that emits"));
+            return Err(LoadError::at(
+                &node.pos,
+                "an 'area' emitter must be nested inside the <shape> that emits",
+            ));
         }
         _ => return Err(unknown_type(node, STANDALONE)),
     };

@@ -1,7 +1,10 @@
 //! Integrator plugins: `path`, `direct`.
 
+use steradian::integrator::{
+    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LightSelection,
+    DEFAULT_RR_SCALE,
+};
 use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
-use steradian::integrator::{parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LightSelection, DEFAULT_RR_SCALE};
 
 use super::{at_property, unknown_type};
 use crate::error::LoadError;
@@ -20,7 +23,10 @@ fn visibility(hide: Option<bool>) -> EmitterVisibility {
 fn count(node: &PluginNode, name: &str, default: i64) -> Result<u32, LoadError> {
     let v = node.props.get_int(name)?.unwrap_or(default);
     u32::try_from(v).map_err(|_| {
-        LoadError::at(node.props.position(name).unwrap_or(&node.pos), format!("{}: '{name}' must be >= 0, got {v}", node.desc()))
+        LoadError::at(
+            node.props.position(name).unwrap_or(&node.pos),
+            format!("{}: '{name}' must be >= 0, got {v}", node.desc()),
+        )
     })
 }
 
@@ -29,7 +35,10 @@ fn light_selection(node: &PluginNode) -> Result<LightSelection, LoadError> {
     match node.props.get_string("light_selection")? {
         None => Ok(LightSelection::Uniform),
         Some(s) => LightSelection::parse(&s).map_err(|m| {
-            LoadError::at(node.props.position("light_selection").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
+            LoadError::at(
+                node.props.position("light_selection").unwrap_or(&node.pos),
+                format!("{}: {m}", node.desc()),
+            )
         }),
     }
 }
@@ -38,11 +47,15 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
     let p = &node.props;
     let integrator = match node.plugin_type.as_str() {
         "path" => {
-            let max_depth = parse_max_depth(p.get_int("max_depth")?.unwrap_or(-1)).map_err(at_property(node, &["max_depth"]))?;
+            let max_depth = parse_max_depth(p.get_int("max_depth")?.unwrap_or(-1))
+                .map_err(at_property(node, &["max_depth"]))?;
             let rr_depth = count(node, "rr_depth", 5)?;
             if rr_depth == 0 {
                 let pos = p.position("rr_depth").unwrap_or(&node.pos);
-                return Err(LoadError::at(pos, format!("{}: 'rr_depth' must be at least 1", node.desc())));
+                return Err(LoadError::at(
+                    pos,
+                    format!("{}: 'rr_depth' must be at least 1", node.desc()),
+                ));
             }
             // steradian's own: the roulette's κ (integrator/path.rs)
             let rr_scale = match p.get_float("rr_scale")? {
@@ -55,13 +68,26 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
                 None => Branches::Auto,
                 Some(v) => parse_branches(v).map_err(at_property(node, &["branches"]))?,
             };
-            Integrator::Path(PathTracer { max_depth, rr_depth, rr_scale, emitters: visibility(p.get_bool("hide_emitters")?), light_selection: light_selection(node)?, branches, ..PathTracer::default() })
+            Integrator::Path(PathTracer {
+                max_depth,
+                rr_depth,
+                rr_scale,
+                emitters: visibility(p.get_bool("hide_emitters")?),
+                light_selection: light_selection(node)?,
+                branches,
+                ..PathTracer::default()
+            })
         }
         "direct" => {
             let shading = count(node, "shading_samples", 1)?;
             let emitter_samples = count(node, "emitter_samples", shading as i64)?;
             let bsdf_samples = count(node, "bsdf_samples", shading as i64)?;
-            Integrator::Direct(DirectIntegrator { emitter_samples, bsdf_samples, emitters: visibility(p.get_bool("hide_emitters")?), light_selection: light_selection(node)? })
+            Integrator::Direct(DirectIntegrator {
+                emitter_samples,
+                bsdf_samples,
+                emitters: visibility(p.get_bool("hide_emitters")?),
+                light_selection: light_selection(node)?,
+            })
         }
         _ => return Err(unknown_type(node, KNOWN)),
     };

@@ -42,7 +42,8 @@ impl Builder {
         if p.is_absolute() {
             return p.to_path_buf();
         }
-        let dir = node.pos.file.parent().filter(|d| node.pos.file.is_file() && !d.as_os_str().is_empty());
+        let dir =
+            node.pos.file.parent().filter(|d| node.pos.file.is_file() && !d.as_os_str().is_empty());
         match dir {
             Some(d) => d.join(p),
             None if node.pos.file.is_file() => p.to_path_buf(),
@@ -91,7 +92,12 @@ impl Builder {
 pub(crate) fn unknown_type(node: &PluginNode, known: &[&str]) -> LoadError {
     LoadError::at(
         &node.pos,
-        format!("unknown {} plugin type '{}' (steradian knows: {})", node.tag.name(), node.plugin_type, known.join(", ")),
+        format!(
+            "unknown {} plugin type '{}' (steradian knows: {})",
+            node.tag.name(),
+            node.plugin_type,
+            known.join(", ")
+        ),
     )
 }
 
@@ -103,7 +109,10 @@ pub(crate) fn at(node: &PluginNode) -> impl Fn(String) -> LoadError + '_ {
 /// Like [`at`], but placed at the property the message is about: the one of `names` that
 /// occurs first in the message and is given in `node` (core-library messages name the
 /// parameter, as in "fov must lie ..."); at `node` itself when none is.
-pub(crate) fn at_property<'a>(node: &'a PluginNode, names: &'a [&'a str]) -> impl Fn(String) -> LoadError + 'a {
+pub(crate) fn at_property<'a>(
+    node: &'a PluginNode,
+    names: &'a [&'a str],
+) -> impl Fn(String) -> LoadError + 'a {
     move |msg| {
         let pos = names
             .iter()
@@ -156,14 +165,20 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError
             }
             ObjectTag::Integrator => {
                 if let Some(first) = integrator_pos.replace(node.pos.clone()) {
-                    return Err(LoadError::at(&node.pos, format!("a scene has one integrator; the first is at {first}")));
+                    return Err(LoadError::at(
+                        &node.pos,
+                        format!("a scene has one integrator; the first is at {first}"),
+                    ));
                 }
                 b.desc.integrator = Some(integrators::build(node)?);
             }
             tag => {
                 return Err(LoadError::at(
                     &node.pos,
-                    format!("<{}> objects are not supported at the scene level by steradian yet", tag.name()),
+                    format!(
+                        "<{}> objects are not supported at the scene level by steradian yet",
+                        tag.name()
+                    ),
                 ))
             }
         }

@@ -18,14 +18,17 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
     let p = &node.props;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let flip_normals = p.get_bool("flip_normals")?.unwrap_or(false);
-    let shape_err = |e: steradian::shape::ShapeError| LoadError::at(&node.pos, format!("{}: {e}", node.desc()));
+    let shape_err =
+        |e: steradian::shape::ShapeError| LoadError::at(&node.pos, format!("{}: {e}", node.desc()));
     // Errors reading a mesh file are placed at its `filename`.
     let mesh_err = |e: steradian::shape::ShapeError| {
         LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {e}", node.desc()))
     };
 
     let mesh_file = |name: &str| -> Result<std::path::PathBuf, LoadError> {
-        let file = p.get_string(name)?.ok_or_else(|| LoadError::at(&node.pos, format!("{}: missing '{name}'", node.desc())))?;
+        let file = p.get_string(name)?.ok_or_else(|| {
+            LoadError::at(&node.pos, format!("{}: missing '{name}'", node.desc()))
+        })?;
         Ok(b.resolve_path(node, &file))
     };
 
@@ -35,13 +38,17 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
             let face_normals = p.get_bool("face_normals")?.unwrap_or(false);
             let flip_tex = p.get_bool("flip_tex_coords")?.unwrap_or(true);
             let data = read_obj(&path, flip_tex).map_err(mesh_err)?;
-            Shape::Mesh(Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(mesh_err)?)
+            Shape::Mesh(
+                Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(mesh_err)?,
+            )
         }
         "ply" => {
             let path = mesh_file("filename")?;
             let face_normals = p.get_bool("face_normals")?.unwrap_or(false);
             let data = read_ply(&path).map_err(mesh_err)?;
-            Shape::Mesh(Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(mesh_err)?)
+            Shape::Mesh(
+                Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(mesh_err)?,
+            )
         }
         "rectangle" => Shape::Rectangle(Rectangle::new(&to_world, flip_normals)),
         "disk" => Shape::Disk(Disk::new(&to_world, flip_normals)),
@@ -50,7 +57,10 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
             let center = p.get_point("center")?.unwrap_or(Vec3::ZERO);
             let radius = p.get_float("radius")?.unwrap_or(1.0);
             if !(radius.is_finite() && radius != 0.0) {
-                return Err(LoadError::at(p.position("radius").unwrap_or(&node.pos), format!("{}: radius must be non-zero and finite, got {radius}", node.desc())));
+                return Err(LoadError::at(
+                    p.position("radius").unwrap_or(&node.pos),
+                    format!("{}: radius must be non-zero and finite, got {radius}", node.desc()),
+                ));
             }
             Shape::Sphere(Sphere::new(center, radius, &to_world, flip_normals))
         }
@@ -58,21 +68,32 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
             let p0 = p.get_point("p0")?.unwrap_or(Vec3::ZERO);
             let p1 = p.get_point("p1")?.unwrap_or(Vec3::Z);
             let radius = p.get_float("radius")?.unwrap_or(1.0);
-            Shape::Cylinder(Cylinder::new(p0, p1, radius, &to_world, flip_normals).map_err(shape_err)?)
+            Shape::Cylinder(
+                Cylinder::new(p0, p1, radius, &to_world, flip_normals).map_err(shape_err)?,
+            )
         }
         _ => return Err(unknown_type(node, KNOWN)),
     };
     if !shape.surface_area().is_finite() {
-        return Err(LoadError::at(&node.pos, format!("{}: the shape's surface area is not finite", node.desc())));
+        return Err(LoadError::at(
+            &node.pos,
+            format!("{}: the shape's surface area is not finite", node.desc()),
+        ));
     }
 
     let bsdfs = node.children_of(ObjectTag::Bsdf);
     let emitter_nodes = node.children_of(ObjectTag::Emitter);
     if bsdfs.len() > 1 {
-        return Err(LoadError::at(bsdfs[1].pos(), format!("{} has more than one BSDF", node.desc())));
+        return Err(LoadError::at(
+            bsdfs[1].pos(),
+            format!("{} has more than one BSDF", node.desc()),
+        ));
     }
     if emitter_nodes.len() > 1 {
-        return Err(LoadError::at(emitter_nodes[1].pos(), format!("{} has more than one emitter", node.desc())));
+        return Err(LoadError::at(
+            emitter_nodes[1].pos(),
+            format!("{} has more than one emitter", node.desc()),
+        ));
     }
     let shape_index = b.desc.shapes.len() as u32;
     let emitter = match emitter_nodes.first() {
@@ -92,6 +113,8 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
         b.desc.sensors.push(sensor);
     }
     node.check_all_used()?;
-    b.desc.shapes.push((shape, ShapeBinding { bsdf, emitter, id: node.id.clone().unwrap_or_default() }));
+    b.desc
+        .shapes
+        .push((shape, ShapeBinding { bsdf, emitter, id: node.id.clone().unwrap_or_default() }));
     Ok(())
 }

@@ -2,7 +2,9 @@
 //! parameters), and [`texture_param`], which reads a parameter that Mitsuba accepts as a
 //! value or as a nested `<texture>`.
 
-use steradian::texture::{read_image, Bitmap, Checkerboard, FilterType, Texture, UvTransform, WrapMode};
+use steradian::texture::{
+    read_image, Bitmap, Checkerboard, FilterType, Texture, UvTransform, WrapMode,
+};
 use steradian::Spectrum;
 
 use super::{unknown_type, Builder};
@@ -14,12 +16,21 @@ const KNOWN: &[&str] = &["bitmap", "checkerboard"];
 /// A parameter given as a value (`<rgb>`, `<spectrum>`, `<float>`) or as a nested
 /// `<texture name="...">` (or a `<ref>` to one); `default` (uniform) when absent, or an error
 /// naming the parameter when `default` is `None`.
-pub(crate) fn texture_param(b: &Builder, node: &PluginNode, name: &str, default: Option<f32>) -> Result<Texture, LoadError> {
+pub(crate) fn texture_param(
+    b: &Builder,
+    node: &PluginNode,
+    name: &str,
+    default: Option<f32>,
+) -> Result<Texture, LoadError> {
     if let Some(child) = node.child(name) {
         if child.node.tag != ObjectTag::Texture {
             return Err(LoadError::at(
                 child.pos(),
-                format!("{}: '{name}' must be a texture or a value, got {}", node.desc(), child.node.desc()),
+                format!(
+                    "{}: '{name}' must be a texture or a value, got {}",
+                    node.desc(),
+                    child.node.desc()
+                ),
             ));
         }
         return build(b, &child.node);
@@ -27,17 +38,28 @@ pub(crate) fn texture_param(b: &Builder, node: &PluginNode, name: &str, default:
     match (node.props.get_spectrum(name)?, default) {
         (Some(v), _) => Ok(Texture::Constant(v)),
         (None, Some(d)) => Ok(Texture::Constant(Spectrum::splat(d))),
-        (None, None) => Err(LoadError::at(&node.pos, format!("{}: missing parameter '{name}' (a value or a <texture>)", node.desc()))),
+        (None, None) => Err(LoadError::at(
+            &node.pos,
+            format!("{}: missing parameter '{name}' (a value or a <texture>)", node.desc()),
+        )),
     }
 }
 
 /// `to_uv` as the affine map of texture coordinates.
 fn to_uv(node: &PluginNode) -> Result<UvTransform, LoadError> {
-    Ok(node.props.get_transform("to_uv")?.map_or(UvTransform::IDENTITY, |t| UvTransform::from_mat4(&t.m)))
+    Ok(node
+        .props
+        .get_transform("to_uv")?
+        .map_or(UvTransform::IDENTITY, |t| UvTransform::from_mat4(&t.m)))
 }
 
 /// One of the allowed values of a string property, at the property on error.
-fn choice<T: Copy>(node: &PluginNode, name: &str, default: T, options: &[(&str, T)]) -> Result<T, LoadError> {
+fn choice<T: Copy>(
+    node: &PluginNode,
+    name: &str,
+    default: T,
+    options: &[(&str, T)],
+) -> Result<T, LoadError> {
     let Some(v) = node.props.get_string(name)? else { return Ok(default) };
     match options.iter().find(|(s, _)| *s == v) {
         Some((_, t)) => Ok(*t),
@@ -45,7 +67,11 @@ fn choice<T: Copy>(node: &PluginNode, name: &str, default: T, options: &[(&str, 
             let names: Vec<String> = options.iter().map(|(s, _)| format!("\"{s}\"")).collect();
             Err(LoadError::at(
                 node.props.position(name).unwrap_or(&node.pos),
-                format!("{}: invalid {name} \"{v}\", must be one of: {}", node.desc(), names.join(", ")),
+                format!(
+                    "{}: invalid {name} \"{v}\", must be one of: {}",
+                    node.desc(),
+                    names.join(", ")
+                ),
             ))
         }
     }
@@ -57,19 +83,43 @@ pub(crate) fn build(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError
     let texture = match node.plugin_type.as_str() {
         "bitmap" => {
             let Some(filename) = p.get_string("filename")? else {
-                return Err(LoadError::at(&node.pos, format!("{}: missing parameter 'filename'", node.desc())));
+                return Err(LoadError::at(
+                    &node.pos,
+                    format!("{}: missing parameter 'filename'", node.desc()),
+                ));
             };
-            let filter = choice(node, "filter_type", FilterType::Bilinear, &[("bilinear", FilterType::Bilinear), ("nearest", FilterType::Nearest)])?;
-            let wrap = choice(node, "wrap_mode", WrapMode::Repeat, &[("repeat", WrapMode::Repeat), ("mirror", WrapMode::Mirror), ("clamp", WrapMode::Clamp)])?;
+            let filter = choice(
+                node,
+                "filter_type",
+                FilterType::Bilinear,
+                &[("bilinear", FilterType::Bilinear), ("nearest", FilterType::Nearest)],
+            )?;
+            let wrap = choice(
+                node,
+                "wrap_mode",
+                WrapMode::Repeat,
+                &[
+                    ("repeat", WrapMode::Repeat),
+                    ("mirror", WrapMode::Mirror),
+                    ("clamp", WrapMode::Clamp),
+                ],
+            )?;
             let raw = p.get_bool("raw")?.unwrap_or(false);
             // storage precision and CUDA texture hardware: no effect on steradian's results
             choice(node, "format", (), &[("auto", ()), ("variant", ()), ("fp16", ())])?;
             p.get_bool("accel")?;
             let to_uv = to_uv(node)?;
             let path = b.resolve_path(node, &filename);
-            let at_file = |msg: String| LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {msg}", node.desc()));
+            let at_file = |msg: String| {
+                LoadError::at(
+                    p.position("filename").unwrap_or(&node.pos),
+                    format!("{}: {msg}", node.desc()),
+                )
+            };
             let image = read_image(&path).map_err(at_file)?;
-            Texture::Bitmap(Bitmap::new(&filename, image, raw, filter, wrap, to_uv).map_err(at_file)?)
+            Texture::Bitmap(
+                Bitmap::new(&filename, image, raw, filter, wrap, to_uv).map_err(at_file)?,
+            )
         }
         "checkerboard" => {
             let color0 = texture_param(b, node, "color0", Some(0.4))?;

@@ -18,7 +18,8 @@ pub const SENSOR: &str = r#"<sensor type="perspective"><float name="fov" value="
 /// per pixel, and its standard error (see [`scene_mean_and_error`]).
 #[allow(dead_code)] // `last_vertex.rs` loads its scenes itself
 pub fn mean_and_error(xml: &str, file: &str, seed: u64) -> (f64, f64) {
-    let s = steradian_mitsuba::load_string(xml, Path::new(file), Path::new("."), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let s = steradian_mitsuba::load_string(xml, Path::new(file), Path::new("."), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
     scene_mean_and_error(&s, seed)
 }
 
@@ -26,7 +27,16 @@ pub fn mean_and_error(xml: &str, file: &str, seed: u64) -> (f64, f64) {
 /// standard error: pixels are independent, and each pixel's error comes from the film, which
 /// sees one value per camera sample; i.i.d. numbers keep it honest.
 pub fn scene_mean_and_error(s: &Scene, seed: u64) -> (f64, f64) {
-    let out = render(s, &RenderOptions { spp: Some(256), seed: Some(seed), sampler: Some(SamplerKind::Independent), ..Default::default() }).unwrap();
+    let out = render(
+        s,
+        &RenderOptions {
+            spp: Some(256),
+            seed: Some(seed),
+            sampler: Some(SamplerKind::Independent),
+            ..Default::default()
+        },
+    )
+    .unwrap();
     let (img, err) = (out.film.develop(), out.film.develop_stderr());
     let n = (img.width * img.height) as f64;
     let mean = img.data.iter().step_by(3).map(|&v| v as f64).sum::<f64>() / n;

@@ -54,8 +54,17 @@ pub(super) struct BuildPrim {
 /// cull part of the leaf. The collapse uses refinements only there (`wide.rs`).
 #[derive(Debug)]
 pub(super) enum BinaryNode {
-    Leaf { bounds: Aabb, start: usize, count: usize, triangles: bool, refined: Option<Box<[BinaryNode; 2]>> },
-    Inner { bounds: Aabb, children: Box<[BinaryNode; 2]> },
+    Leaf {
+        bounds: Aabb,
+        start: usize,
+        count: usize,
+        triangles: bool,
+        refined: Option<Box<[BinaryNode; 2]>>,
+    },
+    Inner {
+        bounds: Aabb,
+        children: Box<[BinaryNode; 2]>,
+    },
 }
 
 /// When [`sah_split`] may answer that a leaf is cheaper.
@@ -169,9 +178,18 @@ fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNod
     let count = prims.len();
     let pure = triangles == count || triangles == 0;
     if count == 1 {
-        return BinaryNode::Leaf { bounds, start: offset, count, triangles: triangles == count, refined: None };
+        return BinaryNode::Leaf {
+            bounds,
+            start: offset,
+            count,
+            triangles: triangles == count,
+            refined: None,
+        };
     }
-    let mid = match (depth < SAH_MAX_DEPTH).then(|| sah_split(prims, &bounds, &cbounds, count - triangles, SplitPolicy::LeafIfCheaper)).flatten() {
+    let mid = match (depth < SAH_MAX_DEPTH)
+        .then(|| sah_split(prims, &bounds, &cbounds, count - triangles, SplitPolicy::LeafIfCheaper))
+        .flatten()
+    {
         Some(mid) => mid,
         None if count <= MAX_LEAF && pure => return refined_leaf(prims, offset, bounds, &cbounds),
         None if count <= MAX_LEAF => {
@@ -190,13 +208,17 @@ fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNod
             // the tree is too deep: split at the median along the widest centroid axis
             let axis = cbounds.max_axis();
             let half = count / 2;
-            prims.select_nth_unstable_by(half, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
+            prims
+                .select_nth_unstable_by(half, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
             half
         }
     };
     let (left, right) = prims.split_at_mut(mid);
     let (l, r) = if count >= PARALLEL_MIN {
-        rayon::join(|| build_node(left, offset, depth + 1), || build_node(right, offset + mid, depth + 1))
+        rayon::join(
+            || build_node(left, offset, depth + 1),
+            || build_node(right, offset + mid, depth + 1),
+        )
     } else {
         (build_node(left, offset, depth + 1), build_node(right, offset + mid, depth + 1))
     };
@@ -206,7 +228,12 @@ fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNod
 /// A leaf over `prims` (all of one kind, at most [`MAX_LEAF`]; `bounds` and `cbounds` from
 /// [`extent`]) with its refinement (see [`BinaryNode`]), reordering `prims` within their range
 /// as the refinement splits them.
-fn refined_leaf(prims: &mut [BuildPrim], offset: usize, bounds: Aabb, cbounds: &Aabb) -> BinaryNode {
+fn refined_leaf(
+    prims: &mut [BuildPrim],
+    offset: usize,
+    bounds: Aabb,
+    cbounds: &Aabb,
+) -> BinaryNode {
     let count = prims.len();
     let triangles = prims[0].is_triangle;
     let other = if triangles { 0 } else { count };
@@ -221,24 +248,45 @@ fn refined_leaf(prims: &mut [BuildPrim], offset: usize, bounds: Aabb, cbounds: &
     // of the leaf's: a wall and a light pass; overlapping halves do not.
     let cost = |b: &Aabb, n: usize| b.surface_area() * leaf_cost(n, triangles);
     let several_shapes = prims.iter().any(|p| p.shape != prims[0].shape);
-    let refined = (count > 1 && several_shapes).then(|| sah_split(prims, &bounds, cbounds, other, SplitPolicy::Always)).flatten().and_then(|mid| {
-        let (left, right) = prims.split_at_mut(mid);
-        let ((lb, lc, _), (rb, rc, _)) = (extent(left), extent(right));
-        let split_cost = cost(&lb, mid) + cost(&rb, count - mid);
-        let grows = leaf_cost(mid, triangles) + leaf_cost(count - mid, triangles) > leaf_cost(count, triangles);
-        let gain = if grows && triangles { REFINE_GROWTH_GAIN } else { 1.0 };
-        // the halves are refined in turn only where the split is kept
-        (split_cost < gain * cost(&bounds, count)).then(|| Box::new([refined_leaf(left, offset, lb, &lc), refined_leaf(right, offset + mid, rb, &rc)]))
-    });
+    let refined = (count > 1 && several_shapes)
+        .then(|| sah_split(prims, &bounds, cbounds, other, SplitPolicy::Always))
+        .flatten()
+        .and_then(|mid| {
+            let (left, right) = prims.split_at_mut(mid);
+            let ((lb, lc, _), (rb, rc, _)) = (extent(left), extent(right));
+            let split_cost = cost(&lb, mid) + cost(&rb, count - mid);
+            let grows = leaf_cost(mid, triangles) + leaf_cost(count - mid, triangles)
+                > leaf_cost(count, triangles);
+            let gain = if grows && triangles { REFINE_GROWTH_GAIN } else { 1.0 };
+            // the halves are refined in turn only where the split is kept
+            (split_cost < gain * cost(&bounds, count)).then(|| {
+                Box::new([
+                    refined_leaf(left, offset, lb, &lc),
+                    refined_leaf(right, offset + mid, rb, &rc),
+                ])
+            })
+        });
     BinaryNode::Leaf { bounds, start: offset, count, triangles, refined }
 }
 
 /// Binned SAH: partitions `items` and returns the size of the left part, or `None` when a leaf
 /// is cheaper under `policy` (or no bin boundary separates the centroids).
-fn sah_split(items: &mut [BuildPrim], bounds: &Aabb, cbounds: &Aabb, other: usize, policy: SplitPolicy) -> Option<usize> {
+fn sah_split(
+    items: &mut [BuildPrim],
+    bounds: &Aabb,
+    cbounds: &Aabb,
+    other: usize,
+    policy: SplitPolicy,
+) -> Option<usize> {
     let count = items.len();
     let extent = cbounds.extent();
-    let scale = Vec3::from_array(std::array::from_fn(|a| if is_positive(extent[a]) { BINS as f32 / extent[a] } else { 0.0 }));
+    let scale = Vec3::from_array(std::array::from_fn(|a| {
+        if is_positive(extent[a]) {
+            BINS as f32 / extent[a]
+        } else {
+            0.0
+        }
+    }));
     let bins = if count >= PARALLEL_BINNING_MIN {
         items
             .par_chunks(PARALLEL_BINNING_MIN / 4)
@@ -283,7 +331,11 @@ fn sah_split(items: &mut [BuildPrim], bounds: &Aabb, cbounds: &Aabb, other: usiz
     let area = bounds.surface_area();
     let split_cost = if area > 0.0 { TRAVERSAL_COST + cost / area } else { TRAVERSAL_COST };
     let pure = other == 0 || other == count;
-    if policy == SplitPolicy::LeafIfCheaper && count <= MAX_LEAF && pure && split_cost >= leaf_cost(count, other == 0) {
+    if policy == SplitPolicy::LeafIfCheaper
+        && count <= MAX_LEAF
+        && pure
+        && split_cost >= leaf_cost(count, other == 0)
+    {
         return None;
     }
     let (min, s) = (cbounds.min[axis], scale[axis]);

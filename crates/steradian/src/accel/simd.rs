@@ -61,7 +61,8 @@ unsafe impl Kernel for Scalar {
     unsafe fn tri8(p: &Tri4, q: &Tri4, r: &TravRay, mut t_max: f32) -> Option<LaneHit> {
         let mut best = None;
         for lane in 0..8 {
-            if let Some((t, b1, b2)) = scalar_lane(if lane < 4 { p } else { q }, r, lane % 4, t_max) {
+            if let Some((t, b1, b2)) = scalar_lane(if lane < 4 { p } else { q }, r, lane % 4, t_max)
+            {
                 t_max = t;
                 best = Some((lane, t, b1, b2));
             }
@@ -144,11 +145,17 @@ mod avx2 {
             impl Lanes for $t {
                 type Array = [f32; $n];
                 #[inline(always)]
-                fn splat(x: f32) -> Self { unsafe { $set1(x) } }
+                fn splat(x: f32) -> Self {
+                    unsafe { $set1(x) }
+                }
                 #[inline(always)]
-                fn from_broadcast(x: __m256) -> Self { unsafe { $from(x) } }
+                fn from_broadcast(x: __m256) -> Self {
+                    unsafe { $from(x) }
+                }
                 #[inline(always)]
-                fn load(a: &[f32; $n]) -> Self { unsafe { $loadu(a.as_ptr()) } }
+                fn load(a: &[f32; $n]) -> Self {
+                    unsafe { $loadu(a.as_ptr()) }
+                }
                 #[inline(always)]
                 fn store(self) -> [f32; $n] {
                     let mut out = [0.0f32; $n];
@@ -156,29 +163,53 @@ mod avx2 {
                     out
                 }
                 #[inline(always)]
-                fn add(self, o: Self) -> Self { unsafe { $add(self, o) } }
+                fn add(self, o: Self) -> Self {
+                    unsafe { $add(self, o) }
+                }
                 #[inline(always)]
-                fn sub(self, o: Self) -> Self { unsafe { $sub(self, o) } }
+                fn sub(self, o: Self) -> Self {
+                    unsafe { $sub(self, o) }
+                }
                 #[inline(always)]
-                fn mul(self, o: Self) -> Self { unsafe { $mul(self, o) } }
+                fn mul(self, o: Self) -> Self {
+                    unsafe { $mul(self, o) }
+                }
                 #[inline(always)]
-                fn div(self, o: Self) -> Self { unsafe { $div(self, o) } }
+                fn div(self, o: Self) -> Self {
+                    unsafe { $div(self, o) }
+                }
                 #[inline(always)]
-                fn or(self, o: Self) -> Self { unsafe { $or(self, o) } }
+                fn or(self, o: Self) -> Self {
+                    unsafe { $or(self, o) }
+                }
                 #[inline(always)]
-                fn and(self, o: Self) -> Self { unsafe { $and(self, o) } }
+                fn and(self, o: Self) -> Self {
+                    unsafe { $and(self, o) }
+                }
                 #[inline(always)]
-                fn andnot(self, o: Self) -> Self { unsafe { $andnot(self, o) } }
+                fn andnot(self, o: Self) -> Self {
+                    unsafe { $andnot(self, o) }
+                }
                 #[inline(always)]
-                fn eq(self, o: Self) -> Self { unsafe { $cmp::<_CMP_EQ_OQ>(self, o) } }
+                fn eq(self, o: Self) -> Self {
+                    unsafe { $cmp::<_CMP_EQ_OQ>(self, o) }
+                }
                 #[inline(always)]
-                fn lt(self, o: Self) -> Self { unsafe { $cmp::<_CMP_LT_OQ>(self, o) } }
+                fn lt(self, o: Self) -> Self {
+                    unsafe { $cmp::<_CMP_LT_OQ>(self, o) }
+                }
                 #[inline(always)]
-                fn gt(self, o: Self) -> Self { unsafe { $cmp::<_CMP_GT_OQ>(self, o) } }
+                fn gt(self, o: Self) -> Self {
+                    unsafe { $cmp::<_CMP_GT_OQ>(self, o) }
+                }
                 #[inline(always)]
-                fn neq(self, o: Self) -> Self { unsafe { $cmp::<_CMP_NEQ_UQ>(self, o) } }
+                fn neq(self, o: Self) -> Self {
+                    unsafe { $cmp::<_CMP_NEQ_UQ>(self, o) }
+                }
                 #[inline(always)]
-                fn movemask(self) -> i32 { unsafe { $movemask(self) } }
+                fn movemask(self) -> i32 {
+                    unsafe { $movemask(self) }
+                }
             }
         };
     }
@@ -189,18 +220,55 @@ mod avx2 {
         x
     }
 
-    lanes!(__m128, 4, _mm_set1_ps, _mm256_castps256_ps128, _mm_loadu_ps, _mm_storeu_ps, _mm_add_ps, _mm_sub_ps, _mm_mul_ps, _mm_div_ps, _mm_or_ps, _mm_and_ps, _mm_andnot_ps, _mm_cmp_ps, _mm_movemask_ps);
-    lanes!(__m256, 8, _mm256_set1_ps, unchanged, _mm256_loadu_ps, _mm256_storeu_ps, _mm256_add_ps, _mm256_sub_ps, _mm256_mul_ps, _mm256_div_ps, _mm256_or_ps, _mm256_and_ps, _mm256_andnot_ps, _mm256_cmp_ps, _mm256_movemask_ps);
+    lanes!(
+        __m128,
+        4,
+        _mm_set1_ps,
+        _mm256_castps256_ps128,
+        _mm_loadu_ps,
+        _mm_storeu_ps,
+        _mm_add_ps,
+        _mm_sub_ps,
+        _mm_mul_ps,
+        _mm_div_ps,
+        _mm_or_ps,
+        _mm_and_ps,
+        _mm_andnot_ps,
+        _mm_cmp_ps,
+        _mm_movemask_ps
+    );
+    lanes!(
+        __m256,
+        8,
+        _mm256_set1_ps,
+        unchanged,
+        _mm256_loadu_ps,
+        _mm256_storeu_ps,
+        _mm256_add_ps,
+        _mm256_sub_ps,
+        _mm256_mul_ps,
+        _mm256_div_ps,
+        _mm256_or_ps,
+        _mm256_and_ps,
+        _mm256_andnot_ps,
+        _mm256_cmp_ps,
+        _mm256_movemask_ps
+    );
 
     /// Watertight test of 4 or 8 triangles (see `triangle.rs`; same operations, same order):
     /// the valid-lane mask, distances and barycentrics (b1, b2). `vertex(v, axis)` loads
     /// coordinate `axis` of vertex `v` of every lane.
     #[inline(always)]
-    fn tri_lanes<V: Lanes>(vertex: impl Fn(usize, usize) -> V, r: &Avx2Ray, t_max: f32) -> (i32, V, V, V) {
+    fn tri_lanes<V: Lanes>(
+        vertex: impl Fn(usize, usize) -> V,
+        r: &Avx2Ray,
+        t_max: f32,
+    ) -> (i32, V, V, V) {
         let [kx, ky, kz] = r.k;
         let [o_x, o_y, o_z] = r.o_k.map(V::from_broadcast);
         let [sx, sy, sz] = r.s.map(V::from_broadcast);
-        let rel = |v: usize| (vertex(v, kx).sub(o_x), vertex(v, ky).sub(o_y), vertex(v, kz).sub(o_z));
+        let rel =
+            |v: usize| (vertex(v, kx).sub(o_x), vertex(v, ky).sub(o_y), vertex(v, kz).sub(o_z));
         let (ax, ay, az) = rel(0);
         let (bx, by, bz) = rel(1);
         let (cx, cy, cz) = rel(2);
@@ -219,7 +287,8 @@ mod avx2 {
             while edge_lanes != 0 {
                 let l = edge_lanes.trailing_zeros() as usize;
                 edge_lanes &= edge_lanes - 1;
-                (uu.as_mut()[l], vv.as_mut()[l], ww.as_mut()[l]) = edge_functions_f64(e.map(|c| c.as_ref()[l]));
+                (uu.as_mut()[l], vv.as_mut()[l], ww.as_mut()[l]) =
+                    edge_functions_f64(e.map(|c| c.as_ref()[l]));
             }
             (u, v, w) = (V::load(&uu), V::load(&vv), V::load(&ww));
         }
@@ -260,7 +329,12 @@ mod avx2 {
     #[inline(always)]
     fn load4x2(lo: &[f32; 4], hi: &[f32; 4]) -> __m256 {
         // SAFETY: both are 4 readable f32; AVX is available (the kernel's contract).
-        unsafe { _mm256_insertf128_ps::<1>(_mm256_castps128_ps256(_mm_loadu_ps(lo.as_ptr())), _mm_loadu_ps(hi.as_ptr())) }
+        unsafe {
+            _mm256_insertf128_ps::<1>(
+                _mm256_castps128_ps256(_mm_loadu_ps(lo.as_ptr())),
+                _mm_loadu_ps(hi.as_ptr()),
+            )
+        }
     }
 
     // SAFETY: every method is only called when the CPU has AVX2 (the trait's contract). They
@@ -273,17 +347,27 @@ mod avx2 {
         #[inline(always)]
         unsafe fn prepare(r: &TravRay) -> Avx2Ray {
             // SAFETY: AVX is available (the trait's contract).
-            unsafe { Avx2Ray {
-                o: [_mm256_set1_ps(r.o[0]), _mm256_set1_ps(r.o[1]), _mm256_set1_ps(r.o[2])],
-                inv_d: [_mm256_set1_ps(r.inv_d[0]), _mm256_set1_ps(r.inv_d[1]), _mm256_set1_ps(r.inv_d[2])],
-                inv_far: [_mm256_set1_ps(r.inv_far[0]), _mm256_set1_ps(r.inv_far[1]), _mm256_set1_ps(r.inv_far[2])],
-                t_min: _mm256_set1_ps(r.t_min),
-                near: r.near,
-                far: r.far,
-                k: r.wt.k,
-                o_k: r.o_k.map(|x| _mm256_set1_ps(x)),
-                s: r.wt.s.map(|x| _mm256_set1_ps(x)),
-            } }
+            unsafe {
+                Avx2Ray {
+                    o: [_mm256_set1_ps(r.o[0]), _mm256_set1_ps(r.o[1]), _mm256_set1_ps(r.o[2])],
+                    inv_d: [
+                        _mm256_set1_ps(r.inv_d[0]),
+                        _mm256_set1_ps(r.inv_d[1]),
+                        _mm256_set1_ps(r.inv_d[2]),
+                    ],
+                    inv_far: [
+                        _mm256_set1_ps(r.inv_far[0]),
+                        _mm256_set1_ps(r.inv_far[1]),
+                        _mm256_set1_ps(r.inv_far[2]),
+                    ],
+                    t_min: _mm256_set1_ps(r.t_min),
+                    near: r.near,
+                    far: r.far,
+                    k: r.wt.k,
+                    o_k: r.o_k.map(|x| _mm256_set1_ps(x)),
+                    s: r.wt.s.map(|x| _mm256_set1_ps(x)),
+                }
+            }
         }
 
         #[inline(always)]
@@ -294,14 +378,26 @@ mod avx2 {
                 let b = &n.bounds;
                 macro_rules! slab {
                     ($plane:expr, $a:expr, $inv:expr) => {
-                        _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(b[$plane].as_ptr()), r.o[$a]), $inv)
+                        _mm256_mul_ps(
+                            _mm256_sub_ps(_mm256_load_ps(b[$plane].as_ptr()), r.o[$a]),
+                            $inv,
+                        )
                     };
                 }
-                let (nx, ny, nz) = (slab!(r.near[0], 0, r.inv_d[0]), slab!(r.near[1], 1, r.inv_d[1]), slab!(r.near[2], 2, r.inv_d[2]));
-                let (fx, fy, fz) = (slab!(r.far[0], 0, r.inv_far[0]), slab!(r.far[1], 1, r.inv_far[1]), slab!(r.far[2], 2, r.inv_far[2]));
+                let (nx, ny, nz) = (
+                    slab!(r.near[0], 0, r.inv_d[0]),
+                    slab!(r.near[1], 1, r.inv_d[1]),
+                    slab!(r.near[2], 2, r.inv_d[2]),
+                );
+                let (fx, fy, fz) = (
+                    slab!(r.far[0], 0, r.inv_far[0]),
+                    slab!(r.far[1], 1, r.inv_far[1]),
+                    slab!(r.far[2], 2, r.inv_far[2]),
+                );
                 // max/min return the second operand when one is NaN: the accumulator goes second
                 let t_near = _mm256_max_ps(nx, _mm256_max_ps(ny, _mm256_max_ps(nz, r.t_min)));
-                let t_far = _mm256_min_ps(fx, _mm256_min_ps(fy, _mm256_min_ps(fz, _mm256_set1_ps(t_max))));
+                let t_far =
+                    _mm256_min_ps(fx, _mm256_min_ps(fy, _mm256_min_ps(fz, _mm256_set1_ps(t_max))));
                 _mm256_storeu_ps(dist.as_mut_ptr(), t_near);
                 _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_LE_OQ>(t_near, t_far)) as u32
             }

@@ -45,7 +45,9 @@ fn scene(seed: u64) -> Vec<Shape> {
             }
             idx.push([3 * i, 3 * i + 1, 3 * i + 2]);
         }
-        shapes.push(Shape::Mesh(Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, false).unwrap()));
+        shapes.push(Shape::Mesh(
+            Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, false).unwrap(),
+        ));
     }
     for _ in 0..60 {
         let c = v3(&mut r) * 20.0 - Vec3::splat(10.0);
@@ -58,7 +60,9 @@ fn scene(seed: u64) -> Vec<Shape> {
         shapes.push(match i % 4 {
             0 => Shape::Rectangle(Rectangle::new(&t, false)),
             1 => Shape::Disk(Disk::new(&t, true)),
-            2 => Shape::Cylinder(Cylinder::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0), 0.5, &t, false).unwrap()),
+            2 => Shape::Cylinder(
+                Cylinder::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0), 0.5, &t, false).unwrap(),
+            ),
             _ => Shape::Mesh(cube(&t, false)),
         });
     }
@@ -73,8 +77,18 @@ fn isas() -> Vec<Isa> {
 /// Triangle leaves of one packet (tested 4 lanes wide) and of two or more (tested in pairs,
 /// 8 lanes wide).
 fn leaf_kinds(accel: &Accel) -> (usize, usize) {
-    let leaves = accel.nodes.iter().flat_map(|n| n.child).filter(|&c| c & super::wide::LEAF != 0 && c & super::wide::ANALYTIC == 0);
-    leaves.fold((0, 0), |(one, more), c| if super::wide::leaf_range(c).len() == 1 { (one + 1, more) } else { (one, more + 1) })
+    let leaves = accel
+        .nodes
+        .iter()
+        .flat_map(|n| n.child)
+        .filter(|&c| c & super::wide::LEAF != 0 && c & super::wide::ANALYTIC == 0);
+    leaves.fold((0, 0), |(one, more), c| {
+        if super::wide::leaf_range(c).len() == 1 {
+            (one + 1, more)
+        } else {
+            (one, more + 1)
+        }
+    })
 }
 
 #[test]
@@ -84,14 +98,20 @@ fn closest_hit_and_occlusion_match_brute_force() {
         let accel = Accel::build_with_isa(&shapes, isa);
         assert_eq!(accel.isa(), isa);
         let (single, paired) = leaf_kinds(&accel);
-        assert!(single > 0 && paired > 0, "both packet tests must run: {single} one-packet leaves, {paired} larger");
+        assert!(
+            single > 0 && paired > 0,
+            "both packet tests must run: {single} one-packet leaves, {paired} larger"
+        );
         let b = accel.bounds();
         assert!(b.min.cmple(Vec3::splat(-10.0)).all() && b.max.cmpge(Vec3::splat(10.0)).all());
         let mut r = Pcg32::new(99, 5);
         let (mut hits, mut occl) = (0, 0);
         for i in 0..10_000 {
             let o = v3(&mut r) * 30.0 - Vec3::splat(15.0);
-            let mut d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(r.next_f32(), r.next_f32()));
+            let mut d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(
+                r.next_f32(),
+                r.next_f32(),
+            ));
             if i % 10 == 0 {
                 // axis-aligned directions exercise the slab test's infinities
                 d = [Vec3::X, -Vec3::Y, Vec3::Z][i % 3];
@@ -107,7 +127,11 @@ fn closest_hit_and_occlusion_match_brute_force() {
                     // the same triangle test in SIMD and scalar: identical distance and barycentrics
                     assert_eq!(h.t, t, "{isa:?} ray {i}");
                     assert_eq!((h.shape, h.prim), (s, p), "{isa:?} ray {i}");
-                    assert_eq!(shapes[s as usize].intersect_prim(p, &ray).unwrap().1, h.uv, "{isa:?} ray {i}");
+                    assert_eq!(
+                        shapes[s as usize].intersect_prim(p, &ray).unwrap().1,
+                        h.uv,
+                        "{isa:?} ray {i}"
+                    );
                 }
                 (g, w) => panic!("{isa:?} ray {i}: bvh {g:?}, brute force {w:?}"),
             }
@@ -117,7 +141,9 @@ fn closest_hit_and_occlusion_match_brute_force() {
             // a ray interval (t_min, t_max): the hit beyond t_min
             if let Some((t, _, _)) = want {
                 let t_min = 0.5 * t;
-                let far = accel.intersect_from(&shapes, &ray, t_min).expect("the closest hit lies beyond t_min");
+                let far = accel
+                    .intersect_from(&shapes, &ray, t_min)
+                    .expect("the closest hit lies beyond t_min");
                 assert_eq!(far.t, t, "{isa:?} ray {i}");
                 assert!(accel.occluded_from(&shapes, &ray, t_min));
             }
@@ -138,7 +164,10 @@ fn intervals_on_a_closed_mesh() {
         let accel = Accel::build_with_isa(&shapes, isa);
         for _ in 0..1000 {
             let o = v3(&mut r) * 2.0 - Vec3::ONE;
-            let d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(r.next_f32(), r.next_f32()));
+            let d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(
+                r.next_f32(),
+                r.next_f32(),
+            ));
             let ray = Ray::infinite(o, d);
             let h = accel.intersect(&shapes, &ray).expect("inside a closed box");
             assert_eq!(h.t, brute_intersect(&shapes, &ray).unwrap().0);
@@ -165,7 +194,10 @@ fn layout_is_compact_and_complete() {
             let n = &accel.nodes[code as usize];
             for lane in 0..WIDTH {
                 if n.child[lane] == EMPTY_CHILD {
-                    assert!(n.bounds[0][lane] > n.bounds[3][lane], "unused lanes hold the empty box");
+                    assert!(
+                        n.bounds[0][lane] > n.bounds[3][lane],
+                        "unused lanes hold the empty box"
+                    );
                     continue;
                 }
                 let b = Aabb::new(
@@ -181,21 +213,32 @@ fn layout_is_compact_and_complete() {
             for (p, ids) in packets.iter().zip(&accel.tri_ids[leaf_range(code)]) {
                 for lane in 0..4 {
                     if ids.shape[lane] == u32::MAX {
-                        assert!(p.v.iter().flatten().all(|axis| axis[lane].is_nan()), "empty lanes never hit");
+                        assert!(
+                            p.v.iter().flatten().all(|axis| axis[lane].is_nan()),
+                            "empty lanes never hit"
+                        );
                         continue;
                     }
                     assert!(seen.insert((ids.shape[lane], ids.prim[lane])));
                     // the packet holds the triangle's vertices, inside the leaf box
-                    let tri = shapes[ids.shape[lane] as usize].triangle(ids.prim[lane]).expect("triangle of a curved shape");
+                    let tri = shapes[ids.shape[lane] as usize]
+                        .triangle(ids.prim[lane])
+                        .expect("triangle of a curved shape");
                     for (k, v) in tri.iter().enumerate() {
-                        assert_eq!([p.v[k][0][lane], p.v[k][1][lane], p.v[k][2][lane]], v.to_array());
+                        assert_eq!(
+                            [p.v[k][0][lane], p.v[k][1][lane], p.v[k][2][lane]],
+                            v.to_array()
+                        );
                         assert!(v.cmpge(parent.min).all() && v.cmple(parent.max).all());
                     }
                 }
             }
         } else {
             for r in &accel.others[leaf_range(code)] {
-                assert!(shapes[r.shape as usize].triangle(r.prim).is_none(), "a triangle among the curved shapes");
+                assert!(
+                    shapes[r.shape as usize].triangle(r.prim).is_none(),
+                    "a triangle among the curved shapes"
+                );
                 assert!(seen.insert((r.shape, r.prim)));
             }
         }
@@ -216,7 +259,12 @@ fn empty_scenes_and_single_shapes() {
         assert!(accel.intersect(&[], &ray).is_none());
         assert!(!accel.occluded(&[], &ray));
         assert!(accel.bounds().is_empty());
-        let shapes = vec![Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, 5.0), 1.0, &Transform::IDENTITY, false))];
+        let shapes = vec![Shape::Sphere(Sphere::new(
+            Vec3::new(0.0, 0.0, 5.0),
+            1.0,
+            &Transform::IDENTITY,
+            false,
+        ))];
         let accel = Accel::build_with_isa(&shapes, isa);
         let h = accel.intersect(&shapes, &ray).unwrap();
         assert!((h.t - 4.0).abs() < 1e-5 && h.shape == 0 && h.prim == 0);
@@ -225,17 +273,28 @@ fn empty_scenes_and_single_shapes() {
         // many identical triangles (coincident centroids) still build and trace
         let pos = vec![Vec3::ZERO, Vec3::X, Vec3::Y];
         let idx = vec![[0, 1, 2]; 100];
-        let shapes = vec![Shape::Mesh(Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, false).unwrap())];
+        let shapes = vec![Shape::Mesh(
+            Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, false).unwrap(),
+        )];
         let accel = Accel::build_with_isa(&shapes, isa);
-        let h = accel.intersect(&shapes, &Ray::infinite(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z)).unwrap();
+        let h =
+            accel.intersect(&shapes, &Ray::infinite(Vec3::new(0.2, 0.2, 1.0), -Vec3::Z)).unwrap();
         assert!((h.t - 1.0).abs() < 1e-6);
         // many instances of analytic shapes: a 20 × 20 × 5 grid of spheres
         let shapes: Vec<Shape> = (0..2000)
-            .map(|i| Shape::Sphere(Sphere::new(Vec3::new((i % 20) as f32, (i / 20 % 20) as f32, (i / 400) as f32 * 3.0), 0.3, &Transform::IDENTITY, false)))
+            .map(|i| {
+                Shape::Sphere(Sphere::new(
+                    Vec3::new((i % 20) as f32, (i / 20 % 20) as f32, (i / 400) as f32 * 3.0),
+                    0.3,
+                    &Transform::IDENTITY,
+                    false,
+                ))
+            })
             .collect();
         let accel = Accel::build_with_isa(&shapes, isa);
         assert_eq!(accel.stats().analytic_prims, 2000);
-        let h = accel.intersect(&shapes, &Ray::infinite(Vec3::new(7.0, 4.0, -10.0), Vec3::Z)).unwrap();
+        let h =
+            accel.intersect(&shapes, &Ray::infinite(Vec3::new(7.0, 4.0, -10.0), Vec3::Z)).unwrap();
         assert_eq!(h.shape, 7 + 4 * 20);
         assert!((h.t - 9.7).abs() < 1e-4);
     }
@@ -246,7 +305,9 @@ fn empty_scenes_and_single_shapes() {
 /// slots to spare. Leaves of several shapes now split into free slots.
 #[test]
 fn separate_shapes_take_free_child_slots() {
-    let floor = Transform::scale(Vec3::splat(8.0)).unwrap().then(&Transform::rotate(Vec3::X, -90.0).unwrap());
+    let floor = Transform::scale(Vec3::splat(8.0))
+        .unwrap()
+        .then(&Transform::rotate(Vec3::X, -90.0).unwrap());
     let shapes = vec![
         Shape::Rectangle(Rectangle::new(&floor, false)),
         Shape::Sphere(Sphere::new(Vec3::new(-0.7, 0.65, 0.0), 0.65, &Transform::IDENTITY, false)),
@@ -255,13 +316,19 @@ fn separate_shapes_take_free_child_slots() {
     for isa in isas() {
         let accel = Accel::build_with_isa(&shapes, isa);
         assert_eq!(accel.nodes.len(), 1, "{isa:?}: three shapes fit one node");
-        let analytic: Vec<usize> = accel.nodes[0].child.iter().filter(|&&c| c != EMPTY_CHILD && c & LEAF != 0 && c & ANALYTIC != 0).map(|&c| leaf_range(c).len()).collect();
+        let analytic: Vec<usize> = accel.nodes[0]
+            .child
+            .iter()
+            .filter(|&&c| c != EMPTY_CHILD && c & LEAF != 0 && c & ANALYTIC != 0)
+            .map(|&c| leaf_range(c).len())
+            .collect();
         assert_eq!(analytic, vec![1, 1], "{isa:?}: each sphere in a leaf of its own");
         // and the hits are still those of brute force
         let mut r = Pcg32::new(3, 1);
         for _ in 0..2000 {
             let o = Vec3::new(0.0, 3.0, 4.0) + (v3(&mut r) - Vec3::splat(0.5));
-            let d = (Vec3::new(4.0 * r.next_f32() - 2.0, 0.0, 2.0 * r.next_f32() - 1.0) - o).normalize();
+            let d = (Vec3::new(4.0 * r.next_f32() - 2.0, 0.0, 2.0 * r.next_f32() - 1.0) - o)
+                .normalize();
             let ray = Ray::new(o, d, f32::INFINITY);
             let want = brute_intersect(&shapes, &ray).map(|(_, s, p)| (s, p));
             let got = accel.intersect(&shapes, &ray).map(|h| (h.shape, h.prim));

@@ -60,7 +60,8 @@ impl TravRay {
     pub fn new(ray: &Ray, t_min: f32) -> TravRay {
         let inv_d = ray.d.recip();
         // branch-free (see `WatertightRay::new`): the slab of each axis the ray enters first
-        let near: [usize; 3] = std::array::from_fn(|a| a + 3 * inv_d[a].is_sign_negative() as usize);
+        let near: [usize; 3] =
+            std::array::from_fn(|a| a + 3 * inv_d[a].is_sign_negative() as usize);
         let wt = WatertightRay::new(ray.d);
         TravRay {
             o: ray.o.to_array(),
@@ -183,10 +184,16 @@ fn prefetch(accel: &Accel, code: u32) {
     {
         use std::arch::x86_64::{_mm_prefetch, _MM_HINT_T0};
         let (ptr, bytes) = if code & LEAF == 0 {
-            (accel.nodes.as_ptr().wrapping_add(code as usize) as *const i8, std::mem::size_of::<Node8>())
+            (
+                accel.nodes.as_ptr().wrapping_add(code as usize) as *const i8,
+                std::mem::size_of::<Node8>(),
+            )
         } else if code & ANALYTIC == 0 {
             let r = leaf_range(code);
-            (accel.tris.as_ptr().wrapping_add(r.start) as *const i8, r.len() * std::mem::size_of::<Tri4>())
+            (
+                accel.tris.as_ptr().wrapping_add(r.start) as *const i8,
+                r.len() * std::mem::size_of::<Tri4>(),
+            )
         } else {
             return;
         };
@@ -206,7 +213,12 @@ fn prefetch(accel: &Accel, code: u32) {
 /// # Safety
 /// The CPU supports the instruction set of `K`.
 #[inline(always)]
-pub(super) unsafe fn closest<K: Kernel>(accel: &Accel, shapes: &[Shape], ray: &Ray, t_min: f32) -> Option<PreliminaryHit> {
+pub(super) unsafe fn closest<K: Kernel>(
+    accel: &Accel,
+    shapes: &[Shape],
+    ray: &Ray,
+    t_min: f32,
+) -> Option<PreliminaryHit> {
     let tr = TravRay::new(ray, t_min);
     // SAFETY: forwarded from the caller.
     let kr = unsafe { K::prepare(&tr) };
@@ -299,7 +311,12 @@ pub(super) unsafe fn closest<K: Kernel>(accel: &Accel, shapes: &[Shape], ray: &R
 /// # Safety
 /// The CPU supports the instruction set of `K`.
 #[inline(always)]
-pub(super) unsafe fn any<K: Kernel>(accel: &Accel, shapes: &[Shape], ray: &Ray, t_min: f32) -> bool {
+pub(super) unsafe fn any<K: Kernel>(
+    accel: &Accel,
+    shapes: &[Shape],
+    ray: &Ray,
+    t_min: f32,
+) -> bool {
     let tr = TravRay::new(ray, t_min);
     // SAFETY: forwarded from the caller.
     let kr = unsafe { K::prepare(&tr) };
@@ -338,7 +355,10 @@ pub(super) unsafe fn any<K: Kernel>(accel: &Accel, shapes: &[Shape], ray: &Ray, 
             }
         } else if code != EMPTY_CHILD {
             for r in &accel.others[leaf_range(code)] {
-                if shapes[r.shape as usize].intersect_prim(r.prim, ray).is_some_and(|(t, _)| t > t_min) {
+                if shapes[r.shape as usize]
+                    .intersect_prim(r.prim, ray)
+                    .is_some_and(|(t, _)| t > t_min)
+                {
                     return true;
                 }
             }
@@ -352,7 +372,12 @@ pub(super) unsafe fn any<K: Kernel>(accel: &Accel, shapes: &[Shape], ray: &Ray, 
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
-unsafe fn closest_avx2(accel: &Accel, shapes: &[Shape], ray: &Ray, t_min: f32) -> Option<PreliminaryHit> {
+unsafe fn closest_avx2(
+    accel: &Accel,
+    shapes: &[Shape],
+    ray: &Ray,
+    t_min: f32,
+) -> Option<PreliminaryHit> {
     // SAFETY: this function is only called when AVX2 is available (see `Accel::intersect_from`).
     unsafe { closest::<super::simd::Avx2>(accel, shapes, ray, t_min) }
 }
@@ -374,7 +399,12 @@ impl Accel {
     /// The closest hit with `t_min < t < ray.t_max` (for analytic shapes, only their first
     /// intersection along the ray is considered).
     #[inline]
-    pub fn intersect_from(&self, shapes: &[Shape], ray: &Ray, t_min: f32) -> Option<PreliminaryHit> {
+    pub fn intersect_from(
+        &self,
+        shapes: &[Shape],
+        ray: &Ray,
+        t_min: f32,
+    ) -> Option<PreliminaryHit> {
         if self.root == EMPTY_CHILD {
             return None;
         }

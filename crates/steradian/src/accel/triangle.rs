@@ -52,7 +52,14 @@ impl WatertightRay {
 /// ray origin, already permuted to (kx, ky, kz). Returns `(t, b1, b2)` with
 /// `t_min < t < t_max`.
 #[inline(always)]
-pub(super) fn watertight_core(a: [f32; 3], b: [f32; 3], c: [f32; 3], s: [f32; 3], t_min: f32, t_max: f32) -> Option<(f32, f32, f32)> {
+pub(super) fn watertight_core(
+    a: [f32; 3],
+    b: [f32; 3],
+    c: [f32; 3],
+    s: [f32; 3],
+    t_min: f32,
+    t_max: f32,
+) -> Option<(f32, f32, f32)> {
     let (ax, ay) = (a[0] - s[0] * a[2], a[1] - s[1] * a[2]);
     let (bx, by) = (b[0] - s[0] * b[2], b[1] - s[1] * b[2]);
     let (cx, cy) = (c[0] - s[0] * c[2], c[1] - s[1] * c[2]);
@@ -97,7 +104,8 @@ pub fn intersect_triangle(p0: Vec3, p1: Vec3, p2: Vec3, ray: &Ray) -> Option<(f3
         let q = p - ray.o;
         [q[wt.k[0]], q[wt.k[1]], q[wt.k[2]]]
     };
-    watertight_core(rel(p0), rel(p1), rel(p2), wt.s, 0.0, ray.t_max).map(|(t, b1, b2)| (t, Vec2::new(b1, b2)))
+    watertight_core(rel(p0), rel(p1), rel(p2), wt.s, 0.0, ray.t_max)
+        .map(|(t, b1, b2)| (t, Vec2::new(b1, b2)))
 }
 
 #[cfg(test)]
@@ -107,16 +115,20 @@ mod tests {
 
     #[test]
     fn hits_inside_and_misses_outside() {
-        let (a, b, c) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
+        let (a, b, c) =
+            (Vec3::new(0.0, 0.0, 0.0), Vec3::new(1.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
         let r = Ray::infinite(Vec3::new(0.25, 0.5, 2.0), -Vec3::Z);
         let (t, uv) = intersect_triangle(a, b, c, &r).unwrap();
         assert!((t - 2.0).abs() < 1e-6 && (uv - Vec2::new(0.25, 0.5)).length() < 1e-6);
         // back side hits too (no culling)
         let r2 = Ray::infinite(Vec3::new(0.25, 0.5, -2.0), Vec3::Z);
         assert!(intersect_triangle(a, b, c, &r2).is_some());
-        assert!(intersect_triangle(a, b, c, &Ray::infinite(Vec3::new(0.6, 0.6, 2.0), -Vec3::Z)).is_none());
-        assert!(intersect_triangle(a, b, c, &Ray::new(Vec3::new(0.25, 0.5, 2.0), -Vec3::Z, 1.9)).is_none());
-        assert!(intersect_triangle(a, b, c, &Ray::infinite(Vec3::new(0.25, 0.5, 2.0), Vec3::Z)).is_none());
+        assert!(intersect_triangle(a, b, c, &Ray::infinite(Vec3::new(0.6, 0.6, 2.0), -Vec3::Z))
+            .is_none());
+        assert!(intersect_triangle(a, b, c, &Ray::new(Vec3::new(0.25, 0.5, 2.0), -Vec3::Z, 1.9))
+            .is_none());
+        assert!(intersect_triangle(a, b, c, &Ray::infinite(Vec3::new(0.25, 0.5, 2.0), Vec3::Z))
+            .is_none());
         // degenerate
         assert!(intersect_triangle(a, b, b, &r).is_none());
         // oblique ray: the barycentrics reproduce the hit point
@@ -149,7 +161,8 @@ mod tests {
                 let f = if tested % 50 == 0 { 0.0 } else { rng.next_f32() };
                 let target = centre + (corner - centre) * f;
                 let o = target
-                    + Vec3::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, 1.0 + rng.next_f32()) * 3.0;
+                    + Vec3::new(rng.next_f32() - 0.5, rng.next_f32() - 0.5, 1.0 + rng.next_f32())
+                        * 3.0;
                 let ray = Ray::infinite(o, (target - o).normalize());
                 let hit = tris.iter().any(|t| intersect_triangle(t[0], t[1], t[2], &ray).is_some());
                 assert!(hit, "ray towards {target} (edge {i}, f {f}) slipped through");

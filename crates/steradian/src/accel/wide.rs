@@ -154,7 +154,16 @@ const PREFETCH_MIN_BYTES: usize = 1 << 20;
 
 impl Default for Accel {
     fn default() -> Self {
-        Accel { nodes: Vec::new(), tris: Vec::new(), tri_ids: Vec::new(), others: Vec::new(), root: EMPTY_CHILD, bounds: Aabb::EMPTY, isa: Isa::detect(), prefetch: false }
+        Accel {
+            nodes: Vec::new(),
+            tris: Vec::new(),
+            tri_ids: Vec::new(),
+            others: Vec::new(),
+            root: EMPTY_CHILD,
+            bounds: Aabb::EMPTY,
+            isa: Isa::detect(),
+            prefetch: false,
+        }
     }
 }
 
@@ -184,7 +193,16 @@ impl Accel {
             let is_triangle = shape.triangle(0).is_some();
             let n = shape.prim_count();
             let first = build.len();
-            build.resize(first + n as usize, BuildPrim { bounds: Aabb::EMPTY, centroid: Vec3::ZERO, shape: s as u32, prim: 0, is_triangle });
+            build.resize(
+                first + n as usize,
+                BuildPrim {
+                    bounds: Aabb::EMPTY,
+                    centroid: Vec3::ZERO,
+                    shape: s as u32,
+                    prim: 0,
+                    is_triangle,
+                },
+            );
             use rayon::prelude::*;
             build[first..].par_iter_mut().with_min_len(4096).enumerate().for_each(|(p, bp)| {
                 bp.prim = p as u32;
@@ -192,7 +210,9 @@ impl Accel {
                 bp.centroid = bp.bounds.center();
             });
         }
-        build.retain(|b| !b.bounds.is_empty() && b.bounds.min.is_finite() && b.bounds.max.is_finite());
+        build.retain(|b| {
+            !b.bounds.is_empty() && b.bounds.min.is_finite() && b.bounds.max.is_finite()
+        });
         let mut accel = Accel { isa, ..Accel::default() };
         if build.is_empty() {
             return accel;
@@ -204,7 +224,9 @@ impl Accel {
         accel.root = root;
         accel.nodes = on_huge_pages(std::mem::take(&mut accel.nodes));
         accel.tris = on_huge_pages(std::mem::take(&mut accel.tris));
-        accel.prefetch = std::mem::size_of_val(accel.nodes.as_slice()) + std::mem::size_of_val(accel.tris.as_slice()) >= PREFETCH_MIN_BYTES;
+        accel.prefetch = std::mem::size_of_val(accel.nodes.as_slice())
+            + std::mem::size_of_val(accel.tris.as_slice())
+            >= PREFETCH_MIN_BYTES;
         accel
     }
 
@@ -219,7 +241,8 @@ impl Accel {
     }
 
     pub fn stats(&self) -> AccelStats {
-        let triangles = self.tri_ids.iter().flat_map(|p| p.shape).filter(|&s| s != u32::MAX).count();
+        let triangles =
+            self.tri_ids.iter().flat_map(|p| p.shape).filter(|&s| s != u32::MAX).count();
         AccelStats {
             nodes: self.nodes.len(),
             triangle_packets: self.tris.len(),
@@ -276,7 +299,9 @@ impl Collapse<'_> {
                     let mut p = Tri4 { v: [[[f32::NAN; 4]; 3]; 3] };
                     let mut ids = Tri4Ids { shape: [u32::MAX; 4], prim: [u32::MAX; 4] };
                     for (lane, bp) in chunk.iter().enumerate() {
-                        let tri = self.shapes[bp.shape as usize].triangle(bp.prim).expect("triangle leaves hold triangles");
+                        let tri = self.shapes[bp.shape as usize]
+                            .triangle(bp.prim)
+                            .expect("triangle leaves hold triangles");
                         for (k, v) in tri.iter().enumerate() {
                             for axis in 0..3 {
                                 p.v[k][axis][lane] = v[axis];
@@ -292,7 +317,11 @@ impl Collapse<'_> {
             }
             BinaryNode::Leaf { start, count, triangles: false, .. } => {
                 let first = self.accel.others.len();
-                self.accel.others.extend(self.prims[*start..start + count].iter().map(|bp| PrimRef { shape: bp.shape, prim: bp.prim }));
+                self.accel.others.extend(
+                    self.prims[*start..start + count]
+                        .iter()
+                        .map(|bp| PrimRef { shape: bp.shape, prim: bp.prim }),
+                );
                 leaf_code(first, *count, true)
             }
             BinaryNode::Inner { children, .. } => {
@@ -304,7 +333,9 @@ impl Collapse<'_> {
                         let widest = kids
                             .iter()
                             .enumerate()
-                            .filter_map(|(i, &k)| halves(k).map(|h| (i, k.bounds().surface_area(), h)))
+                            .filter_map(|(i, &k)| {
+                                halves(k).map(|h| (i, k.bounds().surface_area(), h))
+                            })
                             .max_by(|a, b| a.1.total_cmp(&b.1));
                         let Some((i, _, [left, right])) = widest else { break };
                         kids[i] = left;
@@ -312,7 +343,10 @@ impl Collapse<'_> {
                     }
                 }
                 let idx = self.accel.nodes.len();
-                assert!(idx < ANALYTIC as usize, "scene too large for the BVH: more than 2^30 nodes");
+                assert!(
+                    idx < ANALYTIC as usize,
+                    "scene too large for the BVH: more than 2^30 nodes"
+                );
                 self.accel.nodes.push(Node8::EMPTY);
                 for (lane, k) in kids.iter().enumerate() {
                     let code = self.emit(k);

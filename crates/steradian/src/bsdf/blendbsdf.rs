@@ -97,7 +97,9 @@ impl BlendBsdf {
 #[cfg(test)]
 mod tests {
     use super::super::testing::*;
-    use super::super::{Conductor, Diffuse, MicrofacetDistribution, MicrofacetKind, RoughConductor};
+    use super::super::{
+        Conductor, Diffuse, MicrofacetDistribution, MicrofacetKind, RoughConductor,
+    };
     use super::*;
 
     fn diffuse(a: f32) -> Bsdf {
@@ -106,7 +108,12 @@ mod tests {
 
     fn rough(alpha: f32) -> Bsdf {
         let d = MicrofacetDistribution::new(MicrofacetKind::Beckmann, alpha, alpha, true);
-        Bsdf::RoughConductor(RoughConductor::new(d, Spectrum::new(0.2, 0.9, 1.1), Spectrum::new(3.9, 2.4, 2.1), Spectrum::ONE.into()))
+        Bsdf::RoughConductor(RoughConductor::new(
+            d,
+            Spectrum::new(0.2, 0.9, 1.1),
+            Spectrum::new(3.9, 2.4, 2.1),
+            Spectrum::ONE.into(),
+        ))
     }
 
     fn blend(w: f32, b0: Bsdf, b1: Bsdf) -> Bsdf {
@@ -119,7 +126,11 @@ mod tests {
         for (w, a) in [(0.3, 0.2), (0.7, 0.5), (0.5, 0.1)] {
             for theta in [0.0, 40.0, 75.0] {
                 let b = blend(w, diffuse(0.9), rough(a));
-                let p = if a < 0.15 { chi2_pvalue_sub(&b, dir(theta, 60.0), 200_000, 20 + k, 16) } else { chi2_pvalue(&b, dir(theta, 60.0), 200_000, 20 + k) };
+                let p = if a < 0.15 {
+                    chi2_pvalue_sub(&b, dir(theta, 60.0), 200_000, 20 + k, 16)
+                } else {
+                    chi2_pvalue(&b, dir(theta, 60.0), 200_000, 20 + k)
+                };
                 k += 1;
                 eprintln!("χ² p-value {p:.3}");
                 assert!(p > 0.01 / 9.0, "w={w} α={a} θ={theta}: p-value {p}");
@@ -135,7 +146,10 @@ mod tests {
         let (wo, wi) = (dir(35.0, 0.0), dir(50.0, 160.0));
         let expect = b0.eval(&s, wo, wi) * 0.75 + b1.eval(&s, wo, wi) * 0.25;
         assert!((b.eval(&s, wo, wi) - expect).abs().max_element() < 1e-6);
-        assert!((b.pdf(&s, wo, wi) - (b0.pdf(&s, wo, wi) * 0.75 + b1.pdf(&s, wo, wi) * 0.25)).abs() < 1e-6);
+        assert!(
+            (b.pdf(&s, wo, wi) - (b0.pdf(&s, wo, wi) * 0.75 + b1.pdf(&s, wo, wi) * 0.25)).abs()
+                < 1e-6
+        );
         let (f, g) = (b.eval(&s, wo, wi), b.eval(&s, wi, wo));
         assert!((f - g).abs().max_element() <= 1e-5 * f.max_element(), "{f} vs {g}");
         for theta in [10.0, 60.0, 85.0] {
@@ -149,7 +163,8 @@ mod tests {
 
     #[test]
     fn delta_lobes_keep_their_weight() {
-        let mirror = Bsdf::Conductor(Conductor::new(Spectrum::ZERO, Spectrum::ONE, Spectrum::ONE.into()));
+        let mirror =
+            Bsdf::Conductor(Conductor::new(Spectrum::ZERO, Spectrum::ONE, Spectrum::ONE.into()));
         let b = blend(0.4, diffuse(0.5), mirror.clone());
         let s = sp();
         let wo = dir(30.0, 20.0);
@@ -166,7 +181,10 @@ mod tests {
         for theta in [0.0, 45.0, 80.0, 89.0] {
             let b = blend(0.5, Bsdf::Diffuse(Diffuse::new(Spectrum::ONE.into())), rough(0.3));
             let (m, se) = albedo(&b, dir(theta, 0.0), 50_000, 6);
-            assert!(m.iter().zip(se).all(|(m, se)| *m <= 1.0 + 5.0 * se), "θ={theta}: {m:?} ± {se:?}");
+            assert!(
+                m.iter().zip(se).all(|(m, se)| *m <= 1.0 + 5.0 * se),
+                "θ={theta}: {m:?} ± {se:?}"
+            );
         }
     }
 }

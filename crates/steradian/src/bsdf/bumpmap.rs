@@ -33,9 +33,17 @@ pub struct BumpMap {
 
 impl BumpMap {
     /// `height` must have a gradient ([`Texture::has_gradient`]).
-    pub fn new(height: Texture, scale: f32, nested: Bsdf, options: PerturbOptions) -> Result<Self, String> {
+    pub fn new(
+        height: Texture,
+        scale: f32,
+        nested: Bsdf,
+        options: PerturbOptions,
+    ) -> Result<Self, String> {
         if !height.has_gradient() {
-            return Err("the height texture of a bumpmap must be a bitmap (a checkerboard has no gradient)".into());
+            return Err(
+                "the height texture of a bumpmap must be a bitmap (a checkerboard has no gradient)"
+                    .into(),
+            );
         }
         Ok(BumpMap { height, scale, nested: Box::new(nested), options })
     }
@@ -90,7 +98,17 @@ pub(crate) mod tests {
     pub fn heights() -> Texture {
         let data: Vec<f32> = (0..16).map(|i| 0.1 * ((i * 37) % 11) as f32 / 11.0).collect();
         let img = LoadedImage { width: 4, height: 4, channels: 1, data, format: ImageFormat::Exr };
-        Texture::Bitmap(Bitmap::new("h", img, true, FilterType::Bilinear, WrapMode::Repeat, UvTransform::IDENTITY).unwrap())
+        Texture::Bitmap(
+            Bitmap::new(
+                "h",
+                img,
+                true,
+                FilterType::Bilinear,
+                WrapMode::Repeat,
+                UvTransform::IDENTITY,
+            )
+            .unwrap(),
+        )
     }
 
     /// Mitsuba's `Cu` roughconductor, GGX.
@@ -122,7 +140,10 @@ pub(crate) mod tests {
         for (o, i, f, p) in cases {
             let (wo, wi) = (dir(o.0, o.1), dir(i.0, i.1));
             let v = b.eval(&sp(), wo, wi) * wi.z;
-            assert!((v - Spectrum::from(f)).abs().max_element() < 2e-4 * f[0].max(1.0), "{o:?} {i:?}: {v} vs {f:?}");
+            assert!(
+                (v - Spectrum::from(f)).abs().max_element() < 2e-4 * f[0].max(1.0),
+                "{o:?} {i:?}: {v} vs {f:?}"
+            );
             let q = b.pdf(&sp(), wo, wi);
             assert!((q - p).abs() < 1e-4 * p.max(1.0), "{o:?} {i:?}: pdf {q} vs {p}");
         }
@@ -131,8 +152,24 @@ pub(crate) mod tests {
     #[test]
     fn normal_follows_the_height_gradient() {
         // h = a·u on a flat patch: n' ∝ (−a, 0, 1)
-        let img = LoadedImage { width: 2, height: 1, channels: 1, data: vec![0.0, 0.5], format: ImageFormat::Exr };
-        let ramp = Texture::Bitmap(Bitmap::new("r", img, true, FilterType::Bilinear, WrapMode::Clamp, UvTransform::IDENTITY).unwrap());
+        let img = LoadedImage {
+            width: 2,
+            height: 1,
+            channels: 1,
+            data: vec![0.0, 0.5],
+            format: ImageFormat::Exr,
+        };
+        let ramp = Texture::Bitmap(
+            Bitmap::new(
+                "r",
+                img,
+                true,
+                FilterType::Bilinear,
+                WrapMode::Clamp,
+                UvTransform::IDENTITY,
+            )
+            .unwrap(),
+        );
         let b = BumpMap::new(ramp, 2.0, copper(0.3), PerturbOptions::default()).unwrap();
         let s = ShadingPoint::at_uv(Vec2::new(0.5, 0.5));
         // slope of the interpolant: 0.5 per half texel width = 1 per unit u; times scale 2
@@ -142,20 +179,43 @@ pub(crate) mod tests {
         let below = ShadingPoint { ng: -Vec3::Z, ..s };
         assert!(b.normal(&below).z < 0.0);
         // a constant height changes nothing
-        let flat = Bsdf::BumpMap(BumpMap::new(Spectrum::splat(3.0).into(), 1.0, copper(0.3), PerturbOptions::default()).unwrap());
+        let flat = Bsdf::BumpMap(
+            BumpMap::new(Spectrum::splat(3.0).into(), 1.0, copper(0.3), PerturbOptions::default())
+                .unwrap(),
+        );
         let (wo, wi) = (dir(30.0, 10.0), dir(50.0, 200.0));
         let e = flat.eval(&sp(), wo, wi) - copper(0.3).eval(&sp(), wo, wi);
         assert!(e.abs().max_element() < 1e-5, "{e}");
-        let check = crate::texture::Checkerboard::new(Spectrum::ONE.into(), Spectrum::ZERO.into(), UvTransform::IDENTITY);
-        assert!(BumpMap::new(Texture::Checkerboard(check), 1.0, copper(0.3), PerturbOptions::default()).is_err());
+        let check = crate::texture::Checkerboard::new(
+            Spectrum::ONE.into(),
+            Spectrum::ZERO.into(),
+            UvTransform::IDENTITY,
+        );
+        assert!(BumpMap::new(
+            Texture::Checkerboard(check),
+            1.0,
+            copper(0.3),
+            PerturbOptions::default()
+        )
+        .is_err());
     }
 
     #[test]
     fn sampling_matches_pdf_chi2() {
         let mut k = 0;
-        for (scale, nested) in [(1.0, copper(0.3)), (3.0, copper(0.5)), (2.0, Bsdf::Diffuse(Diffuse::new(Spectrum::splat(0.7).into())))] {
+        for (scale, nested) in [
+            (1.0, copper(0.3)),
+            (3.0, copper(0.5)),
+            (2.0, Bsdf::Diffuse(Diffuse::new(Spectrum::splat(0.7).into()))),
+        ] {
             for theta in [0.0, 45.0, 80.0] {
-                let p = chi2_pvalue_sub(&bump(scale, nested.clone()), dir(theta, 100.0), 200_000, 40 + k, 32);
+                let p = chi2_pvalue_sub(
+                    &bump(scale, nested.clone()),
+                    dir(theta, 100.0),
+                    200_000,
+                    40 + k,
+                    32,
+                );
                 k += 1;
                 eprintln!("χ² p-value {p:.3}");
                 assert!(p > 0.01 / 9.0, "scale {scale} θ={theta}: p-value {p}");
@@ -174,16 +234,23 @@ pub(crate) mod tests {
             check_sample_consistency(&b, dir(theta, 0.0), 8);
         }
         // ρ(wo, wi)·|cos θi| / (|cos θ'i|·G(wi)) is symmetric (directions facing n: no flip)
-        let sym = |wo: Vec3, wi: Vec3| b.eval(&s, wo, wi) * wi.z / (wi.dot(n) * shadow_terminator(n, wi));
+        let sym =
+            |wo: Vec3, wi: Vec3| b.eval(&s, wo, wi) * wi.z / (wi.dot(n) * shadow_terminator(n, wi));
         for (wo, wi) in [(dir(20.0, 0.0), dir(40.0, 150.0)), (dir(60.0, 30.0), dir(10.0, 250.0))] {
             assert!(wo.dot(n) > 0.0 && wi.dot(n) > 0.0);
             let (f, g) = (sym(wo, wi), sym(wi, wo));
-            assert!(f.max_element() > 0.0 && (f - g).abs().max_element() <= 1e-4 * f.max_element(), "{f} vs {g}");
+            assert!(
+                f.max_element() > 0.0 && (f - g).abs().max_element() <= 1e-4 * f.max_element(),
+                "{f} vs {g}"
+            );
         }
         for theta in [0.0, 45.0, 80.0, 89.0] {
             for nested in [copper(0.3), Bsdf::Diffuse(Diffuse::new(Spectrum::ONE.into()))] {
                 let (m, se) = albedo(&bump(3.0, nested), dir(theta, 45.0), 50_000, 9);
-                assert!(m.iter().zip(se).all(|(m, se)| *m <= 1.0 + 5.0 * se), "θ={theta}: {m:?} ± {se:?}");
+                assert!(
+                    m.iter().zip(se).all(|(m, se)| *m <= 1.0 + 5.0 * se),
+                    "θ={theta}: {m:?} ± {se:?}"
+                );
             }
         }
     }
@@ -220,24 +287,56 @@ mod alpha_texture_tests {
             let sp = ShadingPoint::at_uv(uv);
             let a = alpha(uv);
             let d = MicrofacetDistribution::new(MicrofacetKind::Ggx, a, a, true);
-            let plain = RoughConductor::new(d, Spectrum::splat(0.2), Spectrum::splat(3.0), Spectrum::ONE.into());
+            let plain = RoughConductor::new(
+                d,
+                Spectrum::splat(0.2),
+                Spectrum::splat(3.0),
+                Spectrum::ONE.into(),
+            );
             // a constant texture per test point stands in for the spatially varying one
-            let textured = RoughConductor::new(MicrofacetDistribution::new(MicrofacetKind::Ggx, 0.1, 0.1, true), Spectrum::splat(0.2), Spectrum::splat(3.0), Spectrum::ONE.into())
-                .with_alpha_textures(Spectrum::splat(a).into(), Spectrum::splat(a).into());
+            let textured = RoughConductor::new(
+                MicrofacetDistribution::new(MicrofacetKind::Ggx, 0.1, 0.1, true),
+                Spectrum::splat(0.2),
+                Spectrum::splat(3.0),
+                Spectrum::ONE.into(),
+            )
+            .with_alpha_textures(Spectrum::splat(a).into(), Spectrum::splat(a).into());
             let (wo, wi) = (dir(30.0, 10.0), dir(50.0, 200.0));
-            assert_eq!(Bsdf::RoughConductor(plain.clone()).eval(&sp, wo, wi), Bsdf::RoughConductor(textured.clone()).eval(&sp, wo, wi));
-            assert_eq!(Bsdf::RoughConductor(plain).pdf(&sp, wo, wi), Bsdf::RoughConductor(textured).pdf(&sp, wo, wi));
+            assert_eq!(
+                Bsdf::RoughConductor(plain.clone()).eval(&sp, wo, wi),
+                Bsdf::RoughConductor(textured.clone()).eval(&sp, wo, wi)
+            );
+            assert_eq!(
+                Bsdf::RoughConductor(plain).pdf(&sp, wo, wi),
+                Bsdf::RoughConductor(textured).pdf(&sp, wo, wi)
+            );
             let g = RoughDielectric::new(d, 1.5, Spectrum::ONE.into(), Spectrum::ONE.into());
-            let gt = RoughDielectric::new(MicrofacetDistribution::new(MicrofacetKind::Ggx, 0.1, 0.1, true), 1.5, Spectrum::ONE.into(), Spectrum::ONE.into())
-                .with_alpha_textures(Spectrum::splat(a).into(), Spectrum::splat(a).into());
+            let gt = RoughDielectric::new(
+                MicrofacetDistribution::new(MicrofacetKind::Ggx, 0.1, 0.1, true),
+                1.5,
+                Spectrum::ONE.into(),
+                Spectrum::ONE.into(),
+            )
+            .with_alpha_textures(Spectrum::splat(a).into(), Spectrum::splat(a).into());
             let wt = -dir(40.0, 200.0);
-            assert_eq!(Bsdf::RoughDielectric(g.clone()).eval(&sp, wo, wt), Bsdf::RoughDielectric(gt.clone()).eval(&sp, wo, wt));
-            assert_eq!(Bsdf::RoughDielectric(g).pdf(&sp, wo, wt), Bsdf::RoughDielectric(gt).pdf(&sp, wo, wt));
+            assert_eq!(
+                Bsdf::RoughDielectric(g.clone()).eval(&sp, wo, wt),
+                Bsdf::RoughDielectric(gt.clone()).eval(&sp, wo, wt)
+            );
+            assert_eq!(
+                Bsdf::RoughDielectric(g).pdf(&sp, wo, wt),
+                Bsdf::RoughDielectric(gt).pdf(&sp, wo, wt)
+            );
         }
         // a bitmap roughness: sampling still matches the density at the test point
         let b = Bsdf::RoughConductor(
-            RoughConductor::new(MicrofacetDistribution::new(MicrofacetKind::Beckmann, 0.1, 0.1, true), Spectrum::splat(0.2), Spectrum::splat(3.0), Spectrum::ONE.into())
-                .with_alpha_textures(heights(), heights()),
+            RoughConductor::new(
+                MicrofacetDistribution::new(MicrofacetKind::Beckmann, 0.1, 0.1, true),
+                Spectrum::splat(0.2),
+                Spectrum::splat(3.0),
+                Spectrum::ONE.into(),
+            )
+            .with_alpha_textures(heights(), heights()),
         );
         let a = heights().eval_1(sp().uv);
         assert!(a > 0.02, "{a}");

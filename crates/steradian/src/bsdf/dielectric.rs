@@ -68,7 +68,11 @@ mod tests {
     use crate::sampling::Pcg32;
 
     fn glass() -> Bsdf {
-        Bsdf::Dielectric(Dielectric::new(1.5046 / 1.000277, Spectrum::ONE.into(), Spectrum::ONE.into()))
+        Bsdf::Dielectric(Dielectric::new(
+            1.5046 / 1.000277,
+            Spectrum::ONE.into(),
+            Spectrum::ONE.into(),
+        ))
     }
 
     /// Fraction reflected, and R + T counted with the 1/η² radiance factor undone.
@@ -128,6 +132,10 @@ mod tests {
         assert!(s.wi.x * wo.x < 0.0);
         // from inside out, the weight is η²
         let s = b.sample(&sp(), -dir(20.0, 0.0), 0.99, Vec2::ZERO).unwrap();
-        assert!(s.wi.z > 0.0 && (s.weight.x - eta * eta).abs() < 1e-4 && (s.eta - 1.0 / eta).abs() < 1e-6);
+        assert!(
+            s.wi.z > 0.0
+                && (s.weight.x - eta * eta).abs() < 1e-4
+                && (s.eta - 1.0 / eta).abs() < 1e-6
+        );
     }
 }

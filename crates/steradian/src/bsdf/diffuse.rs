@@ -54,7 +54,13 @@ impl Diffuse {
         if pdf <= 0.0 {
             return None;
         }
-        Some(BsdfSample { wi, pdf, weight: self.reflectance.eval(sp.uv), lobe: Lobe::Smooth, eta: 1.0 })
+        Some(BsdfSample {
+            wi,
+            pdf,
+            weight: self.reflectance.eval(sp.uv),
+            lobe: Lobe::Smooth,
+            eta: 1.0,
+        })
     }
 }
 

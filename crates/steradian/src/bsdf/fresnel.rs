@@ -54,7 +54,10 @@ pub fn fresnel_dielectric(cos_theta_i: f32, eta: f32) -> DielectricFresnel {
 pub enum ConductorIor {
     /// η = 0, k = 1: a perfect mirror.
     Perfect,
-    Complex { eta: Spectrum, k: Spectrum },
+    Complex {
+        eta: Spectrum,
+        k: Spectrum,
+    },
 }
 
 impl ConductorIor {
@@ -164,7 +167,11 @@ mod tests {
         assert_eq!(ConductorIor::new(Spectrum::ZERO, Spectrum::ONE), ConductorIor::Perfect);
         for i in 0..=100_000 {
             let cos = i as f32 / 100_000.0;
-            assert_eq!(fresnel_conductor(cos, Spectrum::ZERO, Spectrum::ONE), Spectrum::ONE, "cos θ = {cos}");
+            assert_eq!(
+                fresnel_conductor(cos, Spectrum::ZERO, Spectrum::ONE),
+                Spectrum::ONE,
+                "cos θ = {cos}"
+            );
         }
         // other conductors keep the general formula
         let gold = ConductorIor::new(Spectrum::new(0.2, 0.4, 1.4), Spectrum::new(3.6, 2.4, 1.8));
@@ -177,13 +184,27 @@ mod tests {
         // F_dr = 2∫ F(μ) μ dμ by Gauss–Legendre on [0, 1]; the fits are good to 0.2 % (η > 1)
         // and 1 % (η < 1, Egan–Hilgeman at these IORs).
         let (x, w) = crate::radiometry::gauss_legendre::<64>();
-        for (eta, tol) in [(1.1f32, 2e-3), (1.333, 2e-3), (1.49, 2e-3), (2.0, 2e-3), (1.0 / 1.49, 1e-2), (1.0 / 1.333, 1e-2)] {
-            let exact: f64 = x.iter().zip(&w).map(|(&xi, &wi)| {
-                let mu = 0.5 * (xi + 1.0);
-                wi * 0.5 * 2.0 * fresnel_dielectric(mu as f32, eta).r as f64 * mu
-            }).sum();
+        for (eta, tol) in [
+            (1.1f32, 2e-3),
+            (1.333, 2e-3),
+            (1.49, 2e-3),
+            (2.0, 2e-3),
+            (1.0 / 1.49, 1e-2),
+            (1.0 / 1.333, 1e-2),
+        ] {
+            let exact: f64 = x
+                .iter()
+                .zip(&w)
+                .map(|(&xi, &wi)| {
+                    let mu = 0.5 * (xi + 1.0);
+                    wi * 0.5 * 2.0 * fresnel_dielectric(mu as f32, eta).r as f64 * mu
+                })
+                .sum();
             let fit = fresnel_diffuse_reflectance(eta) as f64;
-            assert!((fit - exact).abs() <= tol * exact, "η = {eta}: fit {fit} vs quadrature {exact}");
+            assert!(
+                (fit - exact).abs() <= tol * exact,
+                "η = {eta}: fit {fit} vs quadrature {exact}"
+            );
         }
     }
 

@@ -59,11 +59,31 @@ pub struct ConductorPreset {
 /// k = 1, a 100 % reflecting mirror.
 pub const CONDUCTOR_PRESETS: &[ConductorPreset] = &[
     ConductorPreset { name: "none", eta: [0.0, 0.0, 0.0], k: [1.0, 1.0, 1.0] },
-    ConductorPreset { name: "Ag", eta: [0.155276, 0.116728, 0.138388], k: [4.82836, 3.12222, 2.14690] },
-    ConductorPreset { name: "Al", eta: [1.65750, 0.880405, 0.521244], k: [9.22381, 6.26950, 4.83700] },
-    ConductorPreset { name: "Au", eta: [0.143036, 0.375307, 1.44205], k: [3.98300, 2.38556, 1.60336] },
-    ConductorPreset { name: "Cr", eta: [4.36967, 2.91651, 1.65490], k: [5.20655, 4.23131, 3.75470] },
-    ConductorPreset { name: "Cu", eta: [0.201006, 0.923750, 1.10222], k: [3.91326, 2.45305, 2.14209] },
+    ConductorPreset {
+        name: "Ag",
+        eta: [0.155276, 0.116728, 0.138388],
+        k: [4.82836, 3.12222, 2.14690],
+    },
+    ConductorPreset {
+        name: "Al",
+        eta: [1.65750, 0.880405, 0.521244],
+        k: [9.22381, 6.26950, 4.83700],
+    },
+    ConductorPreset {
+        name: "Au",
+        eta: [0.143036, 0.375307, 1.44205],
+        k: [3.98300, 2.38556, 1.60336],
+    },
+    ConductorPreset {
+        name: "Cr",
+        eta: [4.36967, 2.91651, 1.65490],
+        k: [5.20655, 4.23131, 3.75470],
+    },
+    ConductorPreset {
+        name: "Cu",
+        eta: [0.201006, 0.923750, 1.10222],
+        k: [3.91326, 2.45305, 2.14209],
+    },
 ];
 
 /// (η, k) of the conductor preset `name` (case-sensitive, like Mitsuba's file names).
@@ -74,7 +94,10 @@ pub fn conductor_preset(name: &str) -> Result<(Spectrum, Spectrum), String> {
         .map(|p| (Spectrum::from(p.eta), Spectrum::from(p.k)))
         .ok_or_else(|| {
             let names: Vec<&str> = CONDUCTOR_PRESETS.iter().map(|p| p.name).collect();
-            format!("unknown conductor material \"{name}\"; supported presets are: {}", names.join(", "))
+            format!(
+                "unknown conductor material \"{name}\"; supported presets are: {}",
+                names.join(", ")
+            )
         })
 }
 

@@ -72,7 +72,13 @@ impl Mask {
             s.pdf *= a;
             Some(s)
         } else {
-            Some(BsdfSample { wi: -wo, pdf: 1.0 - a, weight: Spectrum::ONE, lobe: Lobe::Delta, eta: 1.0 })
+            Some(BsdfSample {
+                wi: -wo,
+                pdf: 1.0 - a,
+                weight: Spectrum::ONE,
+                lobe: Lobe::Delta,
+                eta: 1.0,
+            })
         }
     }
 
@@ -90,7 +96,12 @@ mod tests {
 
     fn rough() -> Bsdf {
         let d = MicrofacetDistribution::new(MicrofacetKind::Ggx, 0.3, 0.3, true);
-        Bsdf::RoughConductor(RoughConductor::new(d, Spectrum::new(0.2, 0.9, 1.1), Spectrum::new(3.9, 2.4, 2.1), Spectrum::ONE.into()))
+        Bsdf::RoughConductor(RoughConductor::new(
+            d,
+            Spectrum::new(0.2, 0.9, 1.1),
+            Spectrum::new(3.9, 2.4, 2.1),
+            Spectrum::ONE.into(),
+        ))
     }
 
     fn mask(a: f32, nested: Bsdf) -> Bsdf {
@@ -101,9 +112,18 @@ mod tests {
     fn sampling_matches_pdf_chi2() {
         let diffuse = Bsdf::Diffuse(Diffuse::new(Spectrum::splat(0.8).into()));
         let mut k = 0;
-        for (a, nested) in [(0.3, diffuse.clone()), (0.8, rough()), (0.5, Bsdf::TwoSided(TwoSided::new(diffuse.clone(), diffuse)))] {
+        for (a, nested) in [
+            (0.3, diffuse.clone()),
+            (0.8, rough()),
+            (0.5, Bsdf::TwoSided(TwoSided::new(diffuse.clone(), diffuse))),
+        ] {
             for theta in [10.0, 50.0, 80.0] {
-                let p = chi2_pvalue_with_delta(&mask(a, nested.clone()), dir(theta, 30.0), 200_000, 7 + k);
+                let p = chi2_pvalue_with_delta(
+                    &mask(a, nested.clone()),
+                    dir(theta, 30.0),
+                    200_000,
+                    7 + k,
+                );
                 k += 1;
                 eprintln!("χ² p-value {p:.3}");
                 assert!(p > 0.01 / 9.0, "a={a} θ={theta}: p-value {p}");
@@ -130,7 +150,10 @@ mod tests {
         let sigma = (n as f64 * 0.21).sqrt();
         assert!((null as f64 - 0.7 * n as f64).abs() < 5.0 * sigma, "{null}");
         // fully opaque / fully transparent
-        assert!(mask(1.0, rough()).sample(&s, wo, 0.999, Vec2::splat(0.4)).unwrap().lobe == Lobe::Smooth);
+        assert!(
+            mask(1.0, rough()).sample(&s, wo, 0.999, Vec2::splat(0.4)).unwrap().lobe
+                == Lobe::Smooth
+        );
         assert_eq!(mask(0.0, rough()).sample(&s, wo, 0.0, Vec2::splat(0.4)).unwrap().wi, -wo);
         // from below, the null lobe still passes through
         assert_eq!(mask(0.0, rough()).sample(&s, -wo, 0.5, Vec2::splat(0.4)).unwrap().wi, wo);
@@ -143,7 +166,10 @@ mod tests {
         let (wo, wi) = (dir(25.0, 10.0), dir(60.0, 200.0));
         assert!((b.eval(&s, wo, wi) - nested.eval(&s, wo, wi) * 0.3).abs().max_element() < 1e-6);
         assert!((b.pdf(&s, wo, wi) - nested.pdf(&s, wo, wi) * 0.3).abs() < 1e-6);
-        assert!((b.eval(&s, wo, wi) - b.eval(&s, wi, wo)).abs().max_element() < 1e-5 * b.eval(&s, wo, wi).max_element());
+        assert!(
+            (b.eval(&s, wo, wi) - b.eval(&s, wi, wo)).abs().max_element()
+                < 1e-5 * b.eval(&s, wo, wi).max_element()
+        );
         for theta in [20.0, 70.0] {
             check_sample_consistency(&b, dir(theta, 45.0), 2);
         }
@@ -153,7 +179,12 @@ mod tests {
     fn furnace() {
         // the scattered part plus the transmitted 1 − a never exceeds 1
         for theta in [0.0, 45.0, 80.0, 89.0] {
-            let (m, se) = albedo(&mask(0.6, Bsdf::Diffuse(Diffuse::new(Spectrum::ONE.into()))), dir(theta, 0.0), 50_000, 4);
+            let (m, se) = albedo(
+                &mask(0.6, Bsdf::Diffuse(Diffuse::new(Spectrum::ONE.into()))),
+                dir(theta, 0.0),
+                50_000,
+                4,
+            );
             assert!(m[0] <= 1.0 + 5.0 * se[0] + 1e-6, "θ={theta}: {m:?}");
             // white nested diffuse: exactly 1 (every sample has weight 1)
             assert!((m[0] - 1.0).abs() < 1e-6, "θ={theta}: {m:?}");

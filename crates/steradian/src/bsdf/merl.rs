@@ -80,7 +80,10 @@ pub struct MerlTable {
 impl fmt::Debug for MerlTable {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         let missing = self.data.iter().filter(|v| v[0] < 0.0).count();
-        write!(f, "MerlTable {{ {RES_THETA_H}×{RES_THETA_D}×{RES_PHI_D} samples, {missing} missing }}")
+        write!(
+            f,
+            "MerlTable {{ {RES_THETA_H}×{RES_THETA_D}×{RES_PHI_D} samples, {missing} missing }}"
+        )
     }
 }
 
@@ -133,7 +136,8 @@ fn split_clamped(x: f32, n: usize) -> (usize, usize, f32) {
 impl MerlTable {
     /// Reads a MERL file (raw or gzip-compressed).
     pub fn read(path: &Path) -> Result<Self, String> {
-        let bytes = std::fs::read(path).map_err(|e| format!("cannot read MERL file {}: {e}", path.display()))?;
+        let bytes = std::fs::read(path)
+            .map_err(|e| format!("cannot read MERL file {}: {e}", path.display()))?;
         Self::from_bytes(&bytes).map_err(|e| format!("MERL file {}: {e}", path.display()))
     }
 
@@ -154,7 +158,10 @@ impl MerlTable {
             bytes
         };
         if bytes.len() < 12 {
-            return Err(format!("truncated: {} bytes, too short for the 12-byte header", bytes.len()));
+            return Err(format!(
+                "truncated: {} bytes, too short for the 12-byte header",
+                bytes.len()
+            ));
         }
         let dim = |i: usize| i32::from_le_bytes(bytes[4 * i..4 * i + 4].try_into().unwrap());
         let dims = [dim(0), dim(1), dim(2)];
@@ -168,7 +175,10 @@ impl MerlTable {
             return Err(format!("truncated: {} bytes, a {RES_THETA_H}×{RES_THETA_D}×{RES_PHI_D} MERL file has {expected}", bytes.len()));
         }
         if bytes.len() > expected {
-            return Err(format!("{} bytes of trailing data after the table (a MERL file has {expected} bytes)", bytes.len() - expected));
+            return Err(format!(
+                "{} bytes of trailing data after the table (a MERL file has {expected} bytes)",
+                bytes.len() - expected
+            ));
         }
         let value = |c: usize, k: usize| {
             let o = 12 + (c * ENTRIES + k) * 8;
@@ -178,9 +188,16 @@ impl MerlTable {
         for k in 0..ENTRIES {
             let v = [value(0, k), value(1, k), value(2, k)];
             if let Some(c) = (0..3).find(|&c| !v[c].is_finite()) {
-                return Err(format!("value {} of channel {c} (entry {k}) is not a finite number", v[c]));
+                return Err(format!(
+                    "value {} of channel {c} (entry {k}) is not a finite number",
+                    v[c]
+                ));
             }
-            data.push(if v.iter().any(|&x| x < 0.0) { [-1.0; 3] } else { [0, 1, 2].map(|c| (v[c] * SCALE[c]) as f32) });
+            data.push(if v.iter().any(|&x| x < 0.0) {
+                [-1.0; 3]
+            } else {
+                [0, 1, 2].map(|c| (v[c] * SCALE[c]) as f32)
+            });
         }
         Ok(MerlTable { data })
     }
@@ -191,8 +208,10 @@ impl MerlTable {
         let data = (0..ENTRIES)
             .into_par_iter()
             .map(|k| {
-                let (ih, id, ip) = (k / (RES_THETA_D * RES_PHI_D), (k / RES_PHI_D) % RES_THETA_D, k % RES_PHI_D);
-                let theta_h = (ih as f64 / RES_THETA_H as f64).powi(2) * std::f64::consts::FRAC_PI_2;
+                let (ih, id, ip) =
+                    (k / (RES_THETA_D * RES_PHI_D), (k / RES_PHI_D) % RES_THETA_D, k % RES_PHI_D);
+                let theta_h =
+                    (ih as f64 / RES_THETA_H as f64).powi(2) * std::f64::consts::FRAC_PI_2;
                 let theta_d = (id as f64).to_radians();
                 let phi_d = (ip as f64).to_radians();
                 let (wo, wi) = from_half_diff(theta_h, theta_d, phi_d);
@@ -322,8 +341,10 @@ impl MerlSampling {
                         let mut m = 0f32;
                         for a in 0..SAMPLE_SUB {
                             for c in 0..SAMPLE_SUB {
-                                let u = (iu as f32 + (a as f32 + 0.5) / SAMPLE_SUB as f32) / SAMPLE_NU as f32;
-                                let v = (iv as f32 + (c as f32 + 0.5) / SAMPLE_SUB as f32) / SAMPLE_NV as f32;
+                                let u = (iu as f32 + (a as f32 + 0.5) / SAMPLE_SUB as f32)
+                                    / SAMPLE_NU as f32;
+                                let v = (iv as f32 + (c as f32 + 0.5) / SAMPLE_SUB as f32)
+                                    / SAMPLE_NV as f32;
                                 let wi = square_to_direction(u, v);
                                 m = m.max(table.eval(wo, wi).element_sum() / 3.0);
                             }
@@ -413,7 +434,14 @@ mod tests {
     use crate::sampling::Pcg32;
 
     fn phong() -> Bsdf {
-        Bsdf::Phong(Phong::new(Spectrum::new(0.3, 0.4, 0.1).into(), Spectrum::new(0.5, 0.3, 0.6).into(), 20.0).unwrap())
+        Bsdf::Phong(
+            Phong::new(
+                Spectrum::new(0.3, 0.4, 0.1).into(),
+                Spectrum::new(0.5, 0.3, 0.6).into(),
+                20.0,
+            )
+            .unwrap(),
+        )
     }
 
     fn tabulated(b: &Bsdf) -> MerlTable {
@@ -434,13 +462,19 @@ mod tests {
             let (th, td, pd) = (rng.next_f64() * 1.5, rng.next_f64() * 1.5, rng.next_f64() * 3.1);
             let (wo, wi) = from_half_diff(th, td, pd);
             let (a, b, c) = half_diff(wo.as_vec3(), wi.as_vec3());
-            assert!((a as f64 - th).abs() < 1e-4 && (b as f64 - td).abs() < 1e-4 && (c as f64 - pd).abs() < 1e-4, "{th} {td} {pd} → {a} {b} {c}");
+            assert!(
+                (a as f64 - th).abs() < 1e-4
+                    && (b as f64 - td).abs() < 1e-4
+                    && (c as f64 - pd).abs() < 1e-4,
+                "{th} {td} {pd} → {a} {b} {c}"
+            );
         }
     }
 
     #[test]
     fn lambertian_table_is_exact_and_phong_within_interpolation_error() {
-        let lambert = Bsdf::Diffuse(super::super::Diffuse::new(Spectrum::new(0.8, 0.5, 0.2).into()));
+        let lambert =
+            Bsdf::Diffuse(super::super::Diffuse::new(Spectrum::new(0.8, 0.5, 0.2).into()));
         let lt = MerlTable::from_bytes(&tabulated(&lambert).to_bytes(0.0)).unwrap();
         let (analytic, merl) = merl_phong();
         let Bsdf::Merl(m) = &merl else { unreachable!() };
@@ -452,7 +486,10 @@ mod tests {
             let wi = warp_uniform(&mut rng);
             let expect = lambert.eval(&s, wo, wi);
             let got = lt.eval(wo, wi);
-            assert!((got - expect).abs().max_element() <= 1e-6 * expect.max_element(), "{got} vs {expect}");
+            assert!(
+                (got - expect).abs().max_element() <= 1e-6 * expect.max_element(),
+                "{got} vs {expect}"
+            );
             // Phong: trilinear weights form a convex combination, so the interpolated value
             // lies within the range of the (valid) samples around the point; a smooth BRDF
             // lies within that range too up to second order. The first-order bound: the
@@ -473,7 +510,10 @@ mod tests {
                 near_horizon += 1;
                 continue;
             }
-            assert!(((a - b).abs() - spread).max_element() <= 1e-6 * a.max_element(), "wo {wo} wi {wi}: merl {b} vs analytic {a}, sample spread {spread}");
+            assert!(
+                ((a - b).abs() - spread).max_element() <= 1e-6 * a.max_element(),
+                "wo {wo} wi {wi}: merl {b} vs analytic {a}, sample spread {spread}"
+            );
             let rel = ((a - b).abs() / a).max_element();
             worst = worst.max(rel);
             sum += rel as f64;
@@ -487,13 +527,22 @@ mod tests {
     }
 
     fn warp_uniform(rng: &mut Pcg32) -> Vec3 {
-        crate::sampling::warp::square_to_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()))
+        crate::sampling::warp::square_to_uniform_hemisphere(Vec2::new(
+            rng.next_f32(),
+            rng.next_f32(),
+        ))
     }
 
     #[test]
     fn sampling_matches_pdf_chi2() {
-        let lambert = Bsdf::Diffuse(super::super::Diffuse::new(Spectrum::new(0.8, 0.5, 0.2).into()));
-        let d = super::super::MicrofacetDistribution::new(super::super::MicrofacetKind::Ggx, 0.1, 0.1, true);
+        let lambert =
+            Bsdf::Diffuse(super::super::Diffuse::new(Spectrum::new(0.8, 0.5, 0.2).into()));
+        let d = super::super::MicrofacetDistribution::new(
+            super::super::MicrofacetKind::Ggx,
+            0.1,
+            0.1,
+            true,
+        );
         let plastic = Bsdf::RoughPlastic(super::super::RoughPlastic::new(
             d,
             1.5,
@@ -508,7 +557,8 @@ mod tests {
         for (i, (analytic, sub)) in tables.iter().enumerate() {
             let merl = Bsdf::Merl(Merl::new(tabulated(analytic)));
             for (j, theta) in angles.into_iter().enumerate() {
-                let p = chi2_pvalue_sub(&merl, dir(theta, 35.0), 200_000, (10 * i + j) as u64, *sub);
+                let p =
+                    chi2_pvalue_sub(&merl, dir(theta, 35.0), 200_000, (10 * i + j) as u64, *sub);
                 min_p = min_p.min(p);
                 assert!(p > 0.01 / tests, "table {i} θ={theta}: p-value {p}");
             }
@@ -523,7 +573,11 @@ mod tests {
         for theta in [0.0, 40.0, 80.0] {
             check_sample_consistency(&merl, dir(theta, 20.0), 3);
         }
-        for (a, c) in [(dir(20.0, 10.0), dir(25.0, 185.0)), (dir(70.0, 0.0), dir(65.0, 170.0)), (dir(5.0, 0.0), dir(80.0, 30.0))] {
+        for (a, c) in [
+            (dir(20.0, 10.0), dir(25.0, 185.0)),
+            (dir(70.0, 0.0), dir(65.0, 170.0)),
+            (dir(5.0, 0.0), dir(80.0, 30.0)),
+        ] {
             let (x, y) = (merl.eval(&s, a, c), merl.eval(&s, c, a));
             assert!((x - y).abs().max_element() <= 1e-4 * x.max_element(), "{x:?} vs {y:?}");
             assert_eq!(merl.eval(&s, -a, c), Spectrum::ZERO);
@@ -537,7 +591,14 @@ mod tests {
             for c in 0..3 {
                 assert!(m[c] <= 1.0 + 5.0 * se[c], "θ={theta}: albedo {m:?}");
                 let tol = 5.0 * (se[c] * se[c] + sea[c] * sea[c]).sqrt() + 0.01 * ma[c];
-                assert!((m[c] - ma[c]).abs() <= tol, "θ={theta} channel {c}: merl {} ± {} vs analytic {} ± {}", m[c], se[c], ma[c], sea[c]);
+                assert!(
+                    (m[c] - ma[c]).abs() <= tol,
+                    "θ={theta} channel {c}: merl {} ± {} vs analytic {} ± {}",
+                    m[c],
+                    se[c],
+                    ma[c],
+                    sea[c]
+                );
             }
         }
     }

@@ -45,13 +45,23 @@ impl MicrofacetDistribution {
     pub fn with_alpha_at(&self, alpha: Option<&(Texture, Texture)>, uv: Vec2) -> Self {
         match alpha {
             None => *self,
-            Some((u, v)) => MicrofacetDistribution::new(self.kind, u.eval_1(uv), v.eval_1(uv), self.sample_visible),
+            Some((u, v)) => MicrofacetDistribution::new(
+                self.kind,
+                u.eval_1(uv),
+                v.eval_1(uv),
+                self.sample_visible,
+            ),
         }
     }
 
     /// A distribution; α below 1e-4 is clamped to 1e-4 (Mitsuba does the same).
     pub fn new(kind: MicrofacetKind, alpha_u: f32, alpha_v: f32, sample_visible: bool) -> Self {
-        MicrofacetDistribution { kind, alpha_u: alpha_u.max(1e-4), alpha_v: alpha_v.max(1e-4), sample_visible }
+        MicrofacetDistribution {
+            kind,
+            alpha_u: alpha_u.max(1e-4),
+            alpha_v: alpha_v.max(1e-4),
+            sample_visible,
+        }
     }
 
     /// The same distribution with both roughnesses multiplied by `s`.
@@ -70,7 +80,8 @@ impl MicrofacetDistribution {
         let (au, av) = (self.alpha_u, self.alpha_v);
         let r = match self.kind {
             MicrofacetKind::Beckmann => {
-                (-((m.x / au).powi(2) + (m.y / av).powi(2)) / ct2).exp() / (PI * au * av * ct2 * ct2)
+                (-((m.x / au).powi(2) + (m.y / av).powi(2)) / ct2).exp()
+                    / (PI * au * av * ct2 * ct2)
             }
             MicrofacetKind::Ggx => {
                 let t = (m.x / au).powi(2) + (m.y / av).powi(2) + ct2;
@@ -132,7 +143,11 @@ impl MicrofacetDistribution {
     /// The normal [`sample`](Self::sample) draws, without its density (for quadratures that
     /// weight by the sampling measure itself).
     pub fn sample_normal(&self, v: Vec3, u: Vec2) -> Vec3 {
-        if self.sample_visible { self.sample_visible_normal(v, u) } else { self.sample_all_normals(u) }
+        if self.sample_visible {
+            self.sample_visible_normal(v, u)
+        } else {
+            self.sample_all_normals(u)
+        }
     }
 
     fn sample_all_normals(&self, u: Vec2) -> Vec3 {
@@ -319,7 +334,11 @@ mod tests {
             let t = 0.5 * (t0 + t1);
             for j in 0..np {
                 let p = (j as f64 + 0.5) / np as f64 * 2.0 * PI64;
-                let m = Vec3::new((t.sin() * p.cos()) as f32, (t.sin() * p.sin()) as f32, t.cos() as f32);
+                let m = Vec3::new(
+                    (t.sin() * p.cos()) as f32,
+                    (t.sin() * p.sin()) as f32,
+                    t.cos() as f32,
+                );
                 acc += f(m) * t.sin() * (t1 - t0) * (2.0 * PI64 / np as f64);
             }
         }
@@ -352,8 +371,10 @@ mod tests {
         let mut rng = Pcg32::new(3, 1);
         for d in all() {
             for _ in 0..2000 {
-                let v = warp::square_to_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()));
-                let m = warp::square_to_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+                let v =
+                    warp::square_to_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+                let m =
+                    warp::square_to_uniform_hemisphere(Vec2::new(rng.next_f32(), rng.next_f32()));
                 let g = d.g1(v, m);
                 // Mitsuba's rational Beckmann G1 overshoots 1 by < 1e-4 near a = 1.6
                 assert!((0.0..=1.0 + 1e-4).contains(&g), "{d:?} G1 = {g}");
@@ -366,7 +387,12 @@ mod tests {
     #[test]
     fn erf_and_inverse() {
         // reference values
-        for (x, e) in [(0.5, 0.520_499_877_813_046_5), (1.0, 0.842_700_792_949_714_9), (2.5, 0.999_593_047_982_555), (3.5, 0.999_999_256_901_627_7)] {
+        for (x, e) in [
+            (0.5, 0.520_499_877_813_046_5),
+            (1.0, 0.842_700_792_949_714_9),
+            (2.5, 0.999_593_047_982_555),
+            (3.5, 0.999_999_256_901_627_7),
+        ] {
             assert!((erf(x) - e).abs() < 1e-14, "erf({x}) = {} vs {e}", erf(x));
             assert!((erf(-x) + e).abs() < 1e-14);
         }

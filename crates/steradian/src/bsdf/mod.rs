@@ -11,14 +11,14 @@ mod bumpmap;
 mod conductor;
 mod dielectric;
 mod diffuse;
-mod merl;
 pub mod fresnel;
 pub mod ior;
 mod mask;
+mod merl;
 pub mod microfacet;
-mod phong;
 mod normalmap;
 mod perturbed;
+mod phong;
 mod plastic;
 mod roughconductor;
 mod roughdielectric;
@@ -31,12 +31,12 @@ pub use bumpmap::BumpMap;
 pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use mask::Mask;
 pub use merl::{Merl, MerlTable};
 pub use microfacet::{MicrofacetDistribution, MicrofacetKind};
-pub use phong::Phong;
-pub use mask::Mask;
 pub use normalmap::NormalMap;
 pub use perturbed::PerturbOptions;
+pub use phong::Phong;
 pub use plastic::{InternalScattering, Plastic};
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
@@ -97,7 +97,12 @@ impl ShadingPoint {
     /// The shading point of a surface interaction (its vectors taken to the shading frame).
     #[inline]
     pub fn new(si: &crate::geometry::SurfaceInteraction) -> Self {
-        ShadingPoint { uv: si.uv, dpdu: si.to_local(si.dpdu), dpdv: si.to_local(si.dpdv), ng: si.to_local(si.n) }
+        ShadingPoint {
+            uv: si.uv,
+            dpdu: si.to_local(si.dpdu),
+            dpdv: si.to_local(si.dpdv),
+            ng: si.to_local(si.n),
+        }
     }
 }
 
@@ -178,7 +183,11 @@ impl Bsdf {
     #[inline]
     pub fn has_smooth_lobe(&self) -> bool {
         match self {
-            Bsdf::Diffuse(_) | Bsdf::RoughConductor(_) | Bsdf::RoughDielectric(_) | Bsdf::Plastic(_) | Bsdf::RoughPlastic(_) => true,
+            Bsdf::Diffuse(_)
+            | Bsdf::RoughConductor(_)
+            | Bsdf::RoughDielectric(_)
+            | Bsdf::Plastic(_)
+            | Bsdf::RoughPlastic(_) => true,
             Bsdf::Phong(_) | Bsdf::Merl(_) => true,
             Bsdf::Conductor(_) | Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided(b) => b.has_smooth_lobe(),
@@ -204,7 +213,11 @@ impl Bsdf {
 /// every lobe that could have drawn it: weight `f·cos θᵢ / pdf`, with `f` evaluated only when
 /// the density is positive. `None` when it is not (or is NaN).
 #[inline]
-pub(crate) fn smooth_sample(wi: Vec3, pdf: f32, f: impl FnOnce() -> Spectrum) -> Option<BsdfSample> {
+pub(crate) fn smooth_sample(
+    wi: Vec3,
+    pdf: f32,
+    f: impl FnOnce() -> Spectrum,
+) -> Option<BsdfSample> {
     if !positive(pdf) {
         return None;
     }
@@ -265,7 +278,14 @@ pub(crate) mod testing {
         chi2_pvalue_impl(bsdf, wo, n, seed, 8, true)
     }
 
-    fn chi2_pvalue_impl(bsdf: &Bsdf, wo: Vec3, n: usize, seed: u64, sub: usize, allow_delta: bool) -> f64 {
+    fn chi2_pvalue_impl(
+        bsdf: &Bsdf,
+        wo: Vec3,
+        n: usize,
+        seed: u64,
+        sub: usize,
+        allow_delta: bool,
+    ) -> f64 {
         const NT: usize = 20;
         const NP: usize = 40;
         let mut observed = vec![0f64; NT * NP];
@@ -277,7 +297,12 @@ pub(crate) mod testing {
             let u2 = Vec2::new(rng.next_f32(), rng.next_f32());
             if let Some(s) = bsdf.sample(&sp, wo, u1, u2) {
                 // the path tracer takes sampled directions as they come, without renormalising
-                assert!((s.wi.length() - 1.0).abs() < 1e-5, "sampled direction {} is not a unit vector (|wi| = {})", s.wi, s.wi.length());
+                assert!(
+                    (s.wi.length() - 1.0).abs() < 1e-5,
+                    "sampled direction {} is not a unit vector (|wi| = {})",
+                    s.wi,
+                    s.wi.length()
+                );
                 if s.lobe == Lobe::Delta {
                     delta += 1;
                     continue;
@@ -303,8 +328,13 @@ pub(crate) mod testing {
                 for a in 0..sub_n {
                     for b in 0..sub_n {
                         let t0 = (it as f64 + (a as f64 + 0.5) / sub_n as f64) * PI / NT as f64;
-                        let p0 = (ip as f64 + (b as f64 + 0.5) / sub_n as f64) * 2.0 * PI / NP as f64;
-                        let w = Vec3::new((t0.sin() * p0.cos()) as f32, (t0.sin() * p0.sin()) as f32, t0.cos() as f32);
+                        let p0 =
+                            (ip as f64 + (b as f64 + 0.5) / sub_n as f64) * 2.0 * PI / NP as f64;
+                        let w = Vec3::new(
+                            (t0.sin() * p0.cos()) as f32,
+                            (t0.sin() * p0.sin()) as f32,
+                            t0.cos() as f32,
+                        );
                         acc += bsdf.pdf(&sp, wo, w) as f64 * t0.sin();
                     }
                 }
@@ -324,7 +354,11 @@ pub(crate) mod testing {
         let mut dof = 0i64;
         for &i in &idx {
             if expected[i] == 0.0 {
-                assert!(observed[i] == 0.0, "sample in a cell of zero density (cell {i}, {} samples)", observed[i]);
+                assert!(
+                    observed[i] == 0.0,
+                    "sample in a cell of zero density (cell {i}, {} samples)",
+                    observed[i]
+                );
                 continue;
             }
             if expected[i] < 5.0 {
@@ -435,7 +469,12 @@ pub(crate) mod testing {
             let pdf = bsdf.pdf(&sp, wo, s.wi);
             assert!((pdf - s.pdf).abs() <= 1e-3 * pdf.max(1e-3), "pdf {pdf} vs sample {}", s.pdf);
             let expect = bsdf.eval(&sp, wo, s.wi) * s.wi.z.abs() / s.pdf;
-            assert!((expect - s.weight).abs().max_element() <= 1e-3 * expect.max_element().max(1e-3), "weight {:?} vs {:?}", s.weight, expect);
+            assert!(
+                (expect - s.weight).abs().max_element() <= 1e-3 * expect.max_element().max(1e-3),
+                "weight {:?} vs {:?}",
+                s.weight,
+                expect
+            );
         }
     }
 
@@ -447,7 +486,12 @@ pub(crate) mod testing {
         for _ in 0..n {
             let u2 = Vec2::new(rng.next_f32(), rng.next_f32());
             if let Some(s) = bsdf.sample(&sp, wo, rng.next_f32(), u2) {
-                assert!((s.wi.length() - 1.0).abs() < 1e-5, "sampled direction {} is not a unit vector (|wi| = {})", s.wi, s.wi.length());
+                assert!(
+                    (s.wi.length() - 1.0).abs() < 1e-5,
+                    "sampled direction {} is not a unit vector (|wi| = {})",
+                    s.wi,
+                    s.wi.length()
+                );
                 for c in 0..3 {
                     let v = s.weight[c] as f64;
                     s1[c] += v;

@@ -68,7 +68,11 @@ mod tests {
     use super::*;
 
     fn nmap(c: Vec3, nested: Bsdf) -> Bsdf {
-        Bsdf::NormalMap(NormalMap::new(crate::Spectrum::from(c).into(), nested, PerturbOptions::default()))
+        Bsdf::NormalMap(NormalMap::new(
+            crate::Spectrum::from(c).into(),
+            nested,
+            PerturbOptions::default(),
+        ))
     }
 
     fn white() -> Bsdf {
@@ -104,20 +108,29 @@ mod tests {
         let (wo, wi) = (dir(30.0, 10.0), dir(50.0, 200.0));
         let flat = nmap(Vec3::new(0.5, 0.5, 1.0), copper(0.3));
         assert!((flat.eval(&s, wo, wi) - copper(0.3).eval(&s, wo, wi)).abs().max_element() < 1e-5);
-        let Bsdf::NormalMap(m) = nmap(Vec3::new(0.75, 0.5, 0.9), copper(0.1)) else { unreachable!() };
+        let Bsdf::NormalMap(m) = nmap(Vec3::new(0.75, 0.5, 0.9), copper(0.1)) else {
+            unreachable!()
+        };
         let n = m.normal(&s).normalize();
         assert!((n - Vec3::new(0.5, 0.0, 0.8).normalize()).length() < 1e-6);
         // a glossy nested lobe peaks around the reflection about n'
         let tilted = Bsdf::NormalMap(m);
         let wo = dir(0.0, 0.0);
         let refl = (2.0 * n.dot(wo) * n - wo).normalize();
-        assert!(refl.z > 0.0 && tilted.eval(&s, wo, refl).max_element() > 10.0 * tilted.eval(&s, wo, Vec3::Z).max_element());
+        assert!(
+            refl.z > 0.0
+                && tilted.eval(&s, wo, refl).max_element()
+                    > 10.0 * tilted.eval(&s, wo, Vec3::Z).max_element()
+        );
     }
 
     #[test]
     fn sampling_matches_pdf_chi2_consistency_furnace() {
         let mut k = 0;
-        for (c, nested) in [(Vec3::new(0.7, 0.4, 0.9), copper(0.3)), (Vec3::new(0.3, 0.8, 0.8), Bsdf::Diffuse(Diffuse::new(Spectrum::splat(0.9).into())))] {
+        for (c, nested) in [
+            (Vec3::new(0.7, 0.4, 0.9), copper(0.3)),
+            (Vec3::new(0.3, 0.8, 0.8), Bsdf::Diffuse(Diffuse::new(Spectrum::splat(0.9).into()))),
+        ] {
             let b = nmap(c, nested);
             for theta in [0.0, 40.0, 80.0] {
                 let p = chi2_pvalue_sub(&b, dir(theta, 20.0), 200_000, 60 + k, 32);

@@ -80,7 +80,12 @@ impl Perturbed {
         let inv_s = s.length_squared().sqrt().recip();
         let s = if inv_s.is_finite() { s * inv_s } else { Vec3::Y };
         let frame = Frame { s, t: n.cross(s), n };
-        let nested = ShadingPoint { uv: sp.uv, dpdu: frame.to_local(sp.dpdu), dpdv: frame.to_local(sp.dpdv), ng: frame.to_local(sp.ng) };
+        let nested = ShadingPoint {
+            uv: sp.uv,
+            dpdu: frame.to_local(sp.dpdu),
+            dpdv: frame.to_local(sp.dpdv),
+            ng: frame.to_local(sp.ng),
+        };
         Perturbed { frame, sp: nested, shadowing: options.use_shadowing_function }
     }
 
@@ -100,7 +105,8 @@ impl Perturbed {
         if !positive(wi.z * wi_p.z) {
             return Spectrum::ZERO;
         }
-        nested.eval(&self.sp, self.frame.to_local(wo), wi_p) * (wi_p.z.abs() / wi.z.abs() * self.g(wi))
+        nested.eval(&self.sp, self.frame.to_local(wo), wi_p)
+            * (wi_p.z.abs() / wi.z.abs() * self.g(wi))
     }
 
     #[inline]

@@ -60,7 +60,11 @@ fn channel_max(t: &Texture) -> Spectrum {
 impl Phong {
     /// The BRDF with its parameters checked: n ≥ 0 finite, reflectances ≥ 0, and
     /// r_d + r_s ≤ 1 in every channel (energy conservation; the message gives the bound).
-    pub fn new(diffuse_reflectance: Texture, specular_reflectance: Texture, exponent: f32) -> Result<Self, String> {
+    pub fn new(
+        diffuse_reflectance: Texture,
+        specular_reflectance: Texture,
+        exponent: f32,
+    ) -> Result<Self, String> {
         if !(exponent >= 0.0 && exponent.is_finite()) {
             return Err(format!("exponent must be a finite number ≥ 0, got {exponent}"));
         }
@@ -119,7 +123,8 @@ impl Phong {
             return 0.0;
         }
         let ps = self.specular_weight;
-        ps * self.sampling_normalization * self.lobe(wo, wi) + (1.0 - ps) * warp::square_to_cosine_hemisphere_pdf(wi)
+        ps * self.sampling_normalization * self.lobe(wo, wi)
+            + (1.0 - ps) * warp::square_to_cosine_hemisphere_pdf(wi)
     }
 
     #[inline]
@@ -132,7 +137,11 @@ impl Phong {
             let cos_alpha = u2.x.powf(1.0 / (self.exponent + 1.0));
             let sin_alpha = (1.0 - cos_alpha * cos_alpha).max(0.0).sqrt();
             let (s, c) = warp::sin_cos_turns(u2.y);
-            Frame::from_normal(reflect(wo)).to_world(Vec3::new(sin_alpha * c, sin_alpha * s, cos_alpha))
+            Frame::from_normal(reflect(wo)).to_world(Vec3::new(
+                sin_alpha * c,
+                sin_alpha * s,
+                cos_alpha,
+            ))
         } else {
             warp::square_to_cosine_hemisphere(u2)
         };
@@ -173,8 +182,20 @@ mod tests {
         for (i, &(rd, rs, n)) in cfg.iter().enumerate() {
             for (j, theta) in angles.into_iter().enumerate() {
                 // sharp lobes need a fine quadrature of the expected counts
-                let sub = if n >= 1000.0 { 48 } else if n >= 100.0 { 16 } else { 8 };
-                let p = chi2_pvalue_sub(&phong(rd, rs, n), dir(theta, 35.0), 200_000, (i * 10 + j) as u64, sub);
+                let sub = if n >= 1000.0 {
+                    48
+                } else if n >= 100.0 {
+                    16
+                } else {
+                    8
+                };
+                let p = chi2_pvalue_sub(
+                    &phong(rd, rs, n),
+                    dir(theta, 35.0),
+                    200_000,
+                    (i * 10 + j) as u64,
+                    sub,
+                );
                 min_p = min_p.min(p);
                 assert!(p > 0.01 / tests, "rd {rd} rs {rs} n {n} θ={theta}: p-value {p}");
             }
@@ -190,9 +211,16 @@ mod tests {
             for theta in [0.0, 40.0, 80.0] {
                 check_sample_consistency(&b, dir(theta, 20.0), i as u64);
             }
-            for (a, c) in [(dir(20.0, 10.0), dir(25.0, 185.0)), (dir(70.0, 0.0), dir(65.0, 170.0)), (dir(5.0, 0.0), dir(80.0, 30.0))] {
+            for (a, c) in [
+                (dir(20.0, 10.0), dir(25.0, 185.0)),
+                (dir(70.0, 0.0), dir(65.0, 170.0)),
+                (dir(5.0, 0.0), dir(80.0, 30.0)),
+            ] {
                 let (x, y) = (b.eval(&s, a, c), b.eval(&s, c, a));
-                assert!((x - y).abs().max_element() <= 1e-5 * x.max_element().max(1e-6), "{x:?} vs {y:?}");
+                assert!(
+                    (x - y).abs().max_element() <= 1e-5 * x.max_element().max(1e-6),
+                    "{x:?} vs {y:?}"
+                );
                 assert_eq!(b.eval(&s, -a, c), Spectrum::ZERO);
                 assert_eq!(b.eval(&s, a, -c), Spectrum::ZERO);
                 assert_eq!(b.pdf(&s, a, -c), 0.0);
@@ -223,9 +251,19 @@ mod tests {
                 let b = phong(Spectrum::splat(rd), Spectrum::splat(rs), n);
                 for theta in [0.0, 30.0, 60.0, 80.0, 89.0] {
                     let (m, se) = albedo(&b, dir(theta, 10.0), 100_000, 7);
-                    assert!(m[0] <= 1.0 + 5.0 * se[0], "n {n} rs {rs} θ={theta}: albedo {} ± {}", m[0], se[0]);
+                    assert!(
+                        m[0] <= 1.0 + 5.0 * se[0],
+                        "n {n} rs {rs} θ={theta}: albedo {} ± {}",
+                        m[0],
+                        se[0]
+                    );
                     if theta == 0.0 {
-                        assert!((m[0] - 1.0).abs() <= 5.0 * se[0] + 1e-5, "n {n}: normal-incidence albedo {} ± {}", m[0], se[0]);
+                        assert!(
+                            (m[0] - 1.0).abs() <= 5.0 * se[0] + 1e-5,
+                            "n {n}: normal-incidence albedo {} ± {}",
+                            m[0],
+                            se[0]
+                        );
                     }
                 }
             }
@@ -234,12 +272,20 @@ mod tests {
 
     #[test]
     fn parameters_checked() {
-        let e = Phong::new(Spectrum::new(0.5, 0.7, 0.1).into(), Spectrum::splat(0.4).into(), 10.0).unwrap_err();
+        let e = Phong::new(Spectrum::new(0.5, 0.7, 0.1).into(), Spectrum::splat(0.4).into(), 10.0)
+            .unwrap_err();
         assert!(e.contains("≤ 1") && e.contains("1.1"), "{e}");
         assert!(Phong::new(Spectrum::splat(0.5).into(), Spectrum::splat(0.5).into(), 10.0).is_ok());
         // per channel, not the sum of maxima
-        assert!(Phong::new(Spectrum::new(0.9, 0.0, 0.0).into(), Spectrum::new(0.0, 0.9, 0.0).into(), 10.0).is_ok());
-        assert!(Phong::new(Spectrum::splat(0.5).into(), Spectrum::splat(0.2).into(), -1.0).unwrap_err().contains("exponent"));
+        assert!(Phong::new(
+            Spectrum::new(0.9, 0.0, 0.0).into(),
+            Spectrum::new(0.0, 0.9, 0.0).into(),
+            10.0
+        )
+        .is_ok());
+        assert!(Phong::new(Spectrum::splat(0.5).into(), Spectrum::splat(0.2).into(), -1.0)
+            .unwrap_err()
+            .contains("exponent"));
         assert!(Phong::new(Spectrum::splat(-0.1).into(), Spectrum::splat(0.2).into(), 1.0).is_err());
     }
 }

@@ -28,7 +28,7 @@ use std::f32::consts::FRAC_1_PI;
 
 use glam::{Vec2, Vec3};
 
-use super::fresnel::{fresnel_diffuse_reflectance, fresnel_dielectric, reflect};
+use super::fresnel::{fresnel_dielectric, fresnel_diffuse_reflectance, reflect};
 use super::{cos_theta, positive, BsdfSample, Lobe, ShadingPoint};
 use crate::sampling::warp;
 use crate::texture::Texture;
@@ -85,7 +85,12 @@ pub struct Plastic {
 }
 
 impl Plastic {
-    pub fn new(eta: f32, diffuse_reflectance: Texture, specular_reflectance: Texture, internal: InternalScattering) -> Self {
+    pub fn new(
+        eta: f32,
+        diffuse_reflectance: Texture,
+        specular_reflectance: Texture,
+        internal: InternalScattering,
+    ) -> Self {
         let specular_weight = specular_sampling_weight(&diffuse_reflectance, &specular_reflectance);
         Plastic {
             eta,
@@ -134,7 +139,13 @@ impl Plastic {
         let p_specular = specular_probability(self.specular_weight, 1.0 - f_o);
         if u1 < p_specular {
             let weight = self.specular_reflectance.eval(sp.uv) * (f_o / p_specular);
-            return Some(BsdfSample { wi: reflect(wo), pdf: p_specular, weight, lobe: Lobe::Delta, eta: 1.0 });
+            return Some(BsdfSample {
+                wi: reflect(wo),
+                pdf: p_specular,
+                weight,
+                lobe: Lobe::Delta,
+                eta: 1.0,
+            });
         }
         let p_diffuse = 1.0 - p_specular;
         let wi = warp::square_to_cosine_hemisphere(u2);
@@ -155,14 +166,24 @@ mod tests {
     use super::*;
 
     fn plastic(a: f32, internal: InternalScattering) -> Bsdf {
-        Bsdf::Plastic(Plastic::new(1.49 / 1.000277, Spectrum::new(a, 0.5 * a, 0.2).into(), Spectrum::ONE.into(), internal))
+        Bsdf::Plastic(Plastic::new(
+            1.49 / 1.000277,
+            Spectrum::new(a, 0.5 * a, 0.2).into(),
+            Spectrum::ONE.into(),
+            internal,
+        ))
     }
 
     #[test]
     fn diffuse_lobe_sampling_matches_pdf_chi2() {
         // The χ² test covers the smooth lobe: condition on it by using u1 past the specular
         // probability (specular weight 0 makes the diffuse lobe the only one).
-        let b = Bsdf::Plastic(Plastic::new(1.5, Spectrum::splat(0.5).into(), Spectrum::ZERO.into(), InternalScattering::Linear));
+        let b = Bsdf::Plastic(Plastic::new(
+            1.5,
+            Spectrum::splat(0.5).into(),
+            Spectrum::ZERO.into(),
+            InternalScattering::Linear,
+        ));
         for theta in [0.0, 45.0, 80.0] {
             let p = chi2_pvalue(&b, dir(theta, 10.0), 100_000, 3);
             assert!(p > 0.01 / 3.0, "θ={theta}: p-value {p}");
@@ -186,17 +207,31 @@ mod tests {
         // is 1 except for the error of the F_dr fit, whose effect is bounded exactly:
         // albedo − 1 = (1 − F_o)(F_dr,fit − F_dr)/(1 − F_dr,fit) with F_dr by quadrature.
         let eta = 1.5f32;
-        let white = Bsdf::Plastic(Plastic::new(eta, Spectrum::ONE.into(), Spectrum::ONE.into(), InternalScattering::Nonlinear));
+        let white = Bsdf::Plastic(Plastic::new(
+            eta,
+            Spectrum::ONE.into(),
+            Spectrum::ONE.into(),
+            InternalScattering::Nonlinear,
+        ));
         let (x, w) = crate::radiometry::gauss_legendre::<256>();
-        let fdr: f64 = x.iter().zip(&w).map(|(&xi, &wi)| {
-            let mu = 0.5 * (xi + 1.0);
-            wi * fresnel_dielectric(mu as f32, 1.0 / eta).r as f64 * mu
-        }).sum();
+        let fdr: f64 = x
+            .iter()
+            .zip(&w)
+            .map(|(&xi, &wi)| {
+                let mu = 0.5 * (xi + 1.0);
+                wi * fresnel_dielectric(mu as f32, 1.0 / eta).r as f64 * mu
+            })
+            .sum();
         let fit = fresnel_diffuse_reflectance(1.0 / eta) as f64;
         let bias = (fit - fdr).abs() / (1.0 - fit);
         for theta in [0.0, 30.0, 60.0, 85.0] {
             let (m, se) = albedo(&white, dir(theta, 0.0), 200_000, 9);
-            assert!((m[0] - 1.0).abs() <= 4.0 * se[0] + bias, "θ={theta}: albedo {} ± {} (fit bias ≤ {bias})", m[0], se[0]);
+            assert!(
+                (m[0] - 1.0).abs() <= 4.0 * se[0] + bias,
+                "θ={theta}: albedo {} ± {} (fit bias ≤ {bias})",
+                m[0],
+                se[0]
+            );
         }
     }
 
@@ -213,7 +248,11 @@ mod tests {
                 if bs.lobe == Lobe::Delta {
                     n += 1;
                     assert!((bs.wi - reflect(wo)).length() < 1e-6);
-                    assert!((bs.weight.x * bs.pdf - f).abs() < 1e-6, "{} vs F = {f}", bs.weight.x * bs.pdf);
+                    assert!(
+                        (bs.weight.x * bs.pdf - f).abs() < 1e-6,
+                        "{} vs F = {f}",
+                        bs.weight.x * bs.pdf
+                    );
                 }
             }
         }

@@ -38,8 +38,18 @@ pub struct RoughConductor {
 }
 
 impl RoughConductor {
-    pub fn new(distribution: MicrofacetDistribution, eta: Spectrum, k: Spectrum, specular_reflectance: Texture) -> Self {
-        RoughConductor { distribution, alpha_textures: None, ior: ConductorIor::new(eta, k), specular_reflectance }
+    pub fn new(
+        distribution: MicrofacetDistribution,
+        eta: Spectrum,
+        k: Spectrum,
+        specular_reflectance: Texture,
+    ) -> Self {
+        RoughConductor {
+            distribution,
+            alpha_textures: None,
+            ior: ConductorIor::new(eta, k),
+            specular_reflectance,
+        }
     }
 
     /// Spatially varying roughness: α_u, α_v read from textures (their `eval_1`).
@@ -138,7 +148,12 @@ mod tests {
     }
 
     fn mirror(d: MicrofacetDistribution) -> Bsdf {
-        Bsdf::RoughConductor(RoughConductor::new(d, Spectrum::ZERO, Spectrum::ONE, Spectrum::ONE.into()))
+        Bsdf::RoughConductor(RoughConductor::new(
+            d,
+            Spectrum::ZERO,
+            Spectrum::ONE,
+            Spectrum::ONE.into(),
+        ))
     }
 
     /// Quadrature resolution for the expected counts: sharp lobes need more.
@@ -156,7 +171,13 @@ mod tests {
         let tests = cfg.len() * 4;
         for (i, d) in cfg.into_iter().enumerate() {
             for (j, theta) in [0.0, 30.0, 60.0, 80.0].into_iter().enumerate() {
-                let p = chi2_pvalue_sub(&gold(d), dir(theta, 35.0), 200_000, (i * 10 + j) as u64, sub(&d));
+                let p = chi2_pvalue_sub(
+                    &gold(d),
+                    dir(theta, 35.0),
+                    200_000,
+                    (i * 10 + j) as u64,
+                    sub(&d),
+                );
                 assert!(p > 0.01 / tests as f64, "{d:?} θ={theta}: p-value {p}");
             }
         }
@@ -170,9 +191,16 @@ mod tests {
                 check_sample_consistency(&b, dir(theta, 20.0), i as u64);
             }
             let s = sp();
-            for (a, c) in [(dir(20.0, 10.0), dir(50.0, 200.0)), (dir(70.0, 0.0), dir(65.0, 170.0)), (dir(5.0, 0.0), dir(10.0, 150.0))] {
+            for (a, c) in [
+                (dir(20.0, 10.0), dir(50.0, 200.0)),
+                (dir(70.0, 0.0), dir(65.0, 170.0)),
+                (dir(5.0, 0.0), dir(10.0, 150.0)),
+            ] {
                 let (x, y) = (b.eval(&s, a, c), b.eval(&s, c, a));
-                assert!((x - y).abs().max_element() <= 1e-5 * x.max_element().max(1e-6), "{x:?} vs {y:?}");
+                assert!(
+                    (x - y).abs().max_element() <= 1e-5 * x.max_element().max(1e-6),
+                    "{x:?} vs {y:?}"
+                );
             }
             assert_eq!(b.eval(&s, dir(30.0, 0.0), dir(100.0, 0.0)), Spectrum::ZERO);
             assert_eq!(b.eval(&s, dir(100.0, 0.0), dir(30.0, 0.0)), Spectrum::ZERO);
@@ -185,7 +213,12 @@ mod tests {
         for d in configs() {
             for theta in [0.0, 30.0, 60.0, 80.0] {
                 let (m, se) = albedo(&mirror(d), dir(theta, 10.0), 40_000, 5);
-                assert!(m[0] <= 1.0 + 4.0 * se[0] + 1e-6, "{d:?} θ={theta}: albedo {} ± {}", m[0], se[0]);
+                assert!(
+                    m[0] <= 1.0 + 4.0 * se[0] + 1e-6,
+                    "{d:?} θ={theta}: albedo {} ± {}",
+                    m[0],
+                    se[0]
+                );
                 // smooth-ish surfaces at moderate angles keep nearly everything
                 if d.alpha_u <= 0.05 && d.alpha_v <= 0.05 && theta <= 60.0 {
                     assert!(m[0] > 0.97, "{d:?} θ={theta}: albedo {}", m[0]);

@@ -52,8 +52,19 @@ fn sign(x: f32) -> f32 {
 }
 
 impl RoughDielectric {
-    pub fn new(distribution: MicrofacetDistribution, eta: f32, specular_reflectance: Texture, specular_transmittance: Texture) -> Self {
-        RoughDielectric { distribution, alpha_textures: None, eta, specular_reflectance, specular_transmittance }
+    pub fn new(
+        distribution: MicrofacetDistribution,
+        eta: f32,
+        specular_reflectance: Texture,
+        specular_transmittance: Texture,
+    ) -> Self {
+        RoughDielectric {
+            distribution,
+            alpha_textures: None,
+            eta,
+            specular_reflectance,
+            specular_transmittance,
+        }
     }
 
     /// Spatially varying roughness: α_u, α_v read from textures (their `eval_1`).
@@ -125,9 +136,12 @@ impl RoughDielectric {
         if om * wo.z <= 0.0 || im * wi.z <= 0.0 {
             return 0.0;
         }
-        let dwh_dwi = if reflect { 1.0 / (4.0 * im) } else { eta * eta * im / (om + eta * im).powi(2) };
+        let dwh_dwi =
+            if reflect { 1.0 / (4.0 * im) } else { eta * eta * im / (om + eta * im).powi(2) };
         let f = fresnel_dielectric(om, self.eta).r;
-        let prob = Self::sampling_distribution(self.distribution_at(sp), wo.z).pdf(wo * sign(wo.z), m) * if reflect { f } else { 1.0 - f };
+        let prob = Self::sampling_distribution(self.distribution_at(sp), wo.z)
+            .pdf(wo * sign(wo.z), m)
+            * if reflect { f } else { 1.0 - f };
         (prob * dwh_dwi).abs()
     }
 
@@ -197,7 +211,12 @@ mod tests {
     const ETA: f32 = 1.5046 / 1.000277;
 
     fn glass(d: MicrofacetDistribution) -> Bsdf {
-        Bsdf::RoughDielectric(RoughDielectric::new(d, ETA, Spectrum::ONE.into(), Spectrum::ONE.into()))
+        Bsdf::RoughDielectric(RoughDielectric::new(
+            d,
+            ETA,
+            Spectrum::ONE.into(),
+            Spectrum::ONE.into(),
+        ))
     }
 
     fn wo_at(theta: f32, inside: bool) -> Vec3 {
@@ -224,8 +243,17 @@ mod tests {
         for (i, d) in cfg.into_iter().enumerate() {
             for (j, theta) in [0.0, 30.0, 60.0, 80.0].into_iter().enumerate() {
                 for inside in [false, true] {
-                    let p = chi2_pvalue_sub(&glass(d), wo_at(theta, inside), 200_000, (i * 100 + j * 2 + inside as usize) as u64, sub(&d));
-                    assert!(p > 0.01 / tests as f64, "{d:?} θ={theta} inside={inside}: p-value {p}");
+                    let p = chi2_pvalue_sub(
+                        &glass(d),
+                        wo_at(theta, inside),
+                        200_000,
+                        (i * 100 + j * 2 + inside as usize) as u64,
+                        sub(&d),
+                    );
+                    assert!(
+                        p > 0.01 / tests as f64,
+                        "{d:?} θ={theta} inside={inside}: p-value {p}"
+                    );
                 }
             }
         }
@@ -259,7 +287,10 @@ mod tests {
                 let n = |w: Vec3| if w.z > 0.0 { 1.0 } else { ETA };
                 let (x, y) = (b.eval(&s, a, c) / (n(a) * n(a)), b.eval(&s, c, a) / (n(c) * n(c)));
                 nonzero += (x.max_element() > 0.0) as usize;
-                assert!((x - y).abs().max_element() <= 1e-4 * x.max_element(), "{d:?}: {x:?} vs {y:?}");
+                assert!(
+                    (x - y).abs().max_element() <= 1e-4 * x.max_element(),
+                    "{d:?}: {x:?} vs {y:?}"
+                );
             }
             assert!(nonzero >= 2, "{d:?}: only {nonzero} non-zero pairs");
         }
@@ -287,7 +318,10 @@ mod tests {
                     }
                     let m = s1 / n as f64;
                     let se = ((s2 / n as f64 - m * m).max(0.0) / (n as f64 - 1.0)).sqrt();
-                    assert!(m <= 1.0 + 4.0 * se + 1e-6, "{d:?} θ={theta} inside={inside}: {m} ± {se}");
+                    assert!(
+                        m <= 1.0 + 4.0 * se + 1e-6,
+                        "{d:?} θ={theta} inside={inside}: {m} ± {se}"
+                    );
                     if d.alpha_u <= 0.05 && d.alpha_v <= 0.05 && theta <= 30.0 {
                         assert!(m > 0.97, "{d:?} θ={theta} inside={inside}: {m}");
                     }

@@ -109,8 +109,11 @@ impl RoughPlastic {
         let distr = &self.distribution;
         let f = fresnel_dielectric(wo.dot(h), self.eta).r;
         let glossy = f * distr.d(h) * distr.g(wo, wi, h) / (4.0 * cos_o * cos_i);
-        let a = self.internal.effective_albedo(self.diffuse_reflectance.eval(sp.uv), self.internal_reflectance);
-        let diffuse = a * (FRAC_1_PI * self.inv_eta_2 * self.transmittance(cos_o) * self.transmittance(cos_i));
+        let a = self
+            .internal
+            .effective_albedo(self.diffuse_reflectance.eval(sp.uv), self.internal_reflectance);
+        let diffuse = a
+            * (FRAC_1_PI * self.inv_eta_2 * self.transmittance(cos_o) * self.transmittance(cos_i));
         self.specular_reflectance.eval(sp.uv) * glossy + diffuse
     }
 
@@ -148,9 +151,17 @@ impl RoughPlastic {
 
 /// Mitsuba's precomputation: T(μᵢ) = 1 − (directional albedo of the coating's reflection)
 /// at the 64 tabulated cosines, and R_int.
-fn coating_tables(distribution: &MicrofacetDistribution, eta: f32) -> (Box<[f32; TABLE_SIZE]>, f32) {
+fn coating_tables(
+    distribution: &MicrofacetDistribution,
+    eta: f32,
+) -> (Box<[f32; TABLE_SIZE]>, f32) {
     // The tables always use visible-normal sampling as their quadrature measure.
-    let vndf = MicrofacetDistribution::new(distribution.kind, distribution.alpha_u, distribution.alpha_v, true);
+    let vndf = MicrofacetDistribution::new(
+        distribution.kind,
+        distribution.alpha_u,
+        distribution.alpha_v,
+        true,
+    );
     let mu = |i: usize| (i as f32 / (TABLE_SIZE - 1) as f32).max(1e-6);
     let dir = |mu: f32| Vec3::new((1.0 - mu * mu).sqrt(), 0.0, mu);
     // 64 quadratures of 32² or 128² points each (about 0.1 s in all): spread over the cores,
@@ -159,7 +170,10 @@ fn coating_tables(distribution: &MicrofacetDistribution, eta: f32) -> (Box<[f32;
         .into_par_iter()
         .map(|i| {
             let wo = dir(mu(i));
-            (coating_transmittance(&vndf, wo, eta), (coating_reflectance(&vndf, wo, 1.0 / eta) * mu(i)) as f64)
+            (
+                coating_transmittance(&vndf, wo, eta),
+                (coating_reflectance(&vndf, wo, 1.0 / eta) * mu(i)) as f64,
+            )
         })
         .collect();
     let mut transmittance = Box::new([0f32; TABLE_SIZE]);
@@ -172,8 +186,17 @@ fn coating_tables(distribution: &MicrofacetDistribution, eta: f32) -> (Box<[f32;
 
 /// Visible-normal quadrature ∫ g(m) D_wo(m) dm with an n×n Gauss–Legendre rule on the
 /// sampling square; Mitsuba uses n = 32 when η > 1 and 128 otherwise.
-fn vndf_quadrature(distr: &MicrofacetDistribution, wo: Vec3, eta: f32, g: impl Fn(Vec3) -> f32) -> f32 {
-    fn run<const N: usize>(distr: &MicrofacetDistribution, wo: Vec3, g: &dyn Fn(Vec3) -> f32) -> f32 {
+fn vndf_quadrature(
+    distr: &MicrofacetDistribution,
+    wo: Vec3,
+    eta: f32,
+    g: impl Fn(Vec3) -> f32,
+) -> f32 {
+    fn run<const N: usize>(
+        distr: &MicrofacetDistribution,
+        wo: Vec3,
+        g: &dyn Fn(Vec3) -> f32,
+    ) -> f32 {
         let (x, w) = gauss_legendre::<N>();
         let mut acc = 0f64;
         for (xa, wa) in x.iter().zip(&w) {
@@ -235,7 +258,13 @@ mod tests {
     }
 
     fn plastic(d: MicrofacetDistribution, a: Spectrum) -> Bsdf {
-        Bsdf::RoughPlastic(RoughPlastic::new(d, 1.5, a.into(), Spectrum::ONE.into(), InternalScattering::Linear))
+        Bsdf::RoughPlastic(RoughPlastic::new(
+            d,
+            1.5,
+            a.into(),
+            Spectrum::ONE.into(),
+            InternalScattering::Linear,
+        ))
     }
 
     #[test]
@@ -260,7 +289,8 @@ mod tests {
                 check_sample_consistency(&b, dir(theta, 20.0), i as u64);
             }
             let s = sp();
-            for (a, c) in [(dir(20.0, 10.0), dir(50.0, 200.0)), (dir(70.0, 0.0), dir(65.0, 170.0))] {
+            for (a, c) in [(dir(20.0, 10.0), dir(50.0, 200.0)), (dir(70.0, 0.0), dir(65.0, 170.0))]
+            {
                 let (x, y) = (b.eval(&s, a, c), b.eval(&s, c, a));
                 assert!((x - y).abs().max_element() <= 1e-5 * x.max_element(), "{x:?} vs {y:?}");
             }
@@ -291,7 +321,13 @@ mod tests {
     #[test]
     fn white_furnace_albedo_at_most_one() {
         for d in configs() {
-            let b = Bsdf::RoughPlastic(RoughPlastic::new(d, 1.5, Spectrum::ONE.into(), Spectrum::ONE.into(), InternalScattering::Nonlinear));
+            let b = Bsdf::RoughPlastic(RoughPlastic::new(
+                d,
+                1.5,
+                Spectrum::ONE.into(),
+                Spectrum::ONE.into(),
+                InternalScattering::Nonlinear,
+            ));
             for theta in [0.0, 30.0, 60.0, 85.0] {
                 let (m, se) = albedo(&b, dir(theta, 10.0), 40_000, 5);
                 // single-scattering microfacets only lose energy (to shadowing)

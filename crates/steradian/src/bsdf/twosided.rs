@@ -78,8 +78,16 @@ mod tests {
         ));
         let s = sp();
         let (wo, wi) = (dir(30.0, 0.0), dir(50.0, 90.0));
-        assert!((b.eval(&s, wo, wi) - Spectrum::splat(0.8 / std::f32::consts::PI)).abs().max_element() < 1e-6);
-        assert!((b.eval(&s, flip(wo), flip(wi)) - Spectrum::splat(0.2 / std::f32::consts::PI)).abs().max_element() < 1e-6);
+        assert!(
+            (b.eval(&s, wo, wi) - Spectrum::splat(0.8 / std::f32::consts::PI)).abs().max_element()
+                < 1e-6
+        );
+        assert!(
+            (b.eval(&s, flip(wo), flip(wi)) - Spectrum::splat(0.2 / std::f32::consts::PI))
+                .abs()
+                .max_element()
+                < 1e-6
+        );
         // light and viewer on opposite sides: nothing
         assert_eq!(b.eval(&s, wo, flip(wi)), Spectrum::ZERO);
         let smp = b.sample(&s, flip(wo), 0.3, Vec2::new(0.2, 0.7)).unwrap();

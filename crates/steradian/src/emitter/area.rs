@@ -11,10 +11,10 @@
 use glam::{Vec2, Vec3};
 
 use super::{EmitterSample, Support};
+use crate::shape::is_positive;
 use crate::shape::{Shape, SurfacePoint, UvRequest};
 use crate::texture::Texture;
 use crate::Spectrum;
-use crate::shape::is_positive;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct AreaLight {
@@ -40,7 +40,11 @@ impl AreaLight {
     #[inline]
     pub fn sample_direction(&self, shapes: &[Shape], p: Vec3, u: Vec2) -> Option<EmitterSample> {
         // a uniform emitter needs no surface coordinates
-        let uv = if matches!(self.radiance, Texture::Constant(_)) { UvRequest::Skip } else { UvRequest::Compute };
+        let uv = if matches!(self.radiance, Texture::Constant(_)) {
+            UvRequest::Skip
+        } else {
+            UvRequest::Compute
+        };
         let ds = shapes[self.shape as usize].sample_direction(p, u, uv)?;
         // one-sided: the sampled point must face the reference point
         if ds.n.dot(ds.wi) >= 0.0 || !is_positive(ds.pdf) {

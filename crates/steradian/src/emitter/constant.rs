@@ -32,7 +32,13 @@ impl ConstantEnvironment {
     pub fn sample_direction(&self, _p: Vec3, u: Vec2) -> Option<EmitterSample> {
         let wi = warp::square_to_uniform_sphere(u);
         let pdf = warp::UNIFORM_SPHERE_PDF;
-        Some(EmitterSample { wi, dist: f32::INFINITY, pdf, weight: self.radiance / pdf, support: Support::Extended })
+        Some(EmitterSample {
+            wi,
+            dist: f32::INFINITY,
+            pdf,
+            weight: self.radiance / pdf,
+            support: Support::Extended,
+        })
     }
 
     #[inline]

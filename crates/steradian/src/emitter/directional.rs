@@ -11,8 +11,8 @@
 use glam::Vec3;
 
 use super::{EmitterSample, Support};
-use crate::Spectrum;
 use crate::shape::is_positive;
+use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct DirectionalLight {
@@ -32,6 +32,12 @@ impl DirectionalLight {
 
     #[inline]
     pub fn sample_direction(&self, _p: Vec3) -> Option<EmitterSample> {
-        Some(EmitterSample { wi: -self.direction, dist: f32::INFINITY, pdf: 1.0, weight: self.irradiance, support: Support::Delta })
+        Some(EmitterSample {
+            wi: -self.direction,
+            dist: f32::INFINITY,
+            pdf: 1.0,
+            weight: self.irradiance,
+            support: Support::Delta,
+        })
     }
 }

@@ -11,8 +11,8 @@
 use glam::Vec3;
 
 use super::{EmitterSample, Support};
-use crate::Spectrum;
 use crate::shape::is_positive;
+use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct PointLight {
@@ -33,6 +33,12 @@ impl PointLight {
             return None;
         }
         let dist = dist2.sqrt();
-        Some(EmitterSample { wi: d / dist, dist, pdf: 1.0, weight: self.intensity / dist2, support: Support::Delta })
+        Some(EmitterSample {
+            wi: d / dist,
+            dist,
+            pdf: 1.0,
+            weight: self.intensity / dist2,
+            support: Support::Delta,
+        })
     }
 }

@@ -14,8 +14,8 @@ use glam::Vec3;
 
 use super::{EmitterSample, Support};
 use crate::geometry::{Frame, Transform};
-use crate::Spectrum;
 use crate::shape::is_positive;
+use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
 pub struct SpotLight {
@@ -33,9 +33,17 @@ pub struct SpotLight {
 
 impl SpotLight {
     /// `cutoff` and `beam_width` in radians.
-    pub fn new(to_world: &Transform, intensity: Spectrum, cutoff: f32, beam_width: f32) -> Result<Self, String> {
+    pub fn new(
+        to_world: &Transform,
+        intensity: Spectrum,
+        cutoff: f32,
+        beam_width: f32,
+    ) -> Result<Self, String> {
         if !(cutoff > 0.0 && cutoff <= std::f32::consts::PI) {
-            return Err(format!("cutoff_angle must lie in (0°, 180°], got {}°", cutoff.to_degrees()));
+            return Err(format!(
+                "cutoff_angle must lie in (0°, 180°], got {}°",
+                cutoff.to_degrees()
+            ));
         }
         if !(beam_width > 0.0 && beam_width <= cutoff) {
             return Err(format!(
@@ -96,6 +104,12 @@ impl SpotLight {
         if f <= 0.0 {
             return None;
         }
-        Some(EmitterSample { wi, dist, pdf: 1.0, weight: self.intensity * (f / dist2), support: Support::Delta })
+        Some(EmitterSample {
+            wi,
+            dist,
+            pdf: 1.0,
+            weight: self.intensity * (f / dist2),
+            support: Support::Delta,
+        })
     }
 }

@@ -48,11 +48,7 @@ pub fn write_exr_layers_as(
             )));
         }
         for (c, ch) in ["R", "G", "B"].iter().enumerate() {
-            let name = if prefix.is_empty() {
-                ch.to_string()
-            } else {
-                format!("{prefix}.{ch}")
-            };
+            let name = if prefix.is_empty() { ch.to_string() } else { format!("{prefix}.{ch}") };
             if names.contains(&name) {
                 return Err(err(format!("duplicate channel {name}")));
             }

@@ -10,7 +10,13 @@ use std::path::Path;
 use super::{encode_png_rgb8, Image};
 
 /// Viridis control points (0, 0.25, 0.5, 0.75, 1), sRGB 8-bit.
-const RAMP: [[f32; 3]; 5] = [[68.0, 1.0, 84.0], [59.0, 82.0, 139.0], [33.0, 145.0, 140.0], [94.0, 201.0, 98.0], [253.0, 231.0, 37.0]];
+const RAMP: [[f32; 3]; 5] = [
+    [68.0, 1.0, 84.0],
+    [59.0, 82.0, 139.0],
+    [33.0, 145.0, 140.0],
+    [94.0, 201.0, 98.0],
+    [253.0, 231.0, 37.0],
+];
 
 fn ramp(t: f32) -> [u8; 3] {
     let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
@@ -80,7 +86,11 @@ impl Canvas {
                     if bits & (16 >> col) != 0 {
                         for dy in 0..scale {
                             for dx in 0..scale {
-                                self.set(x + (k * 6 + col) * scale + dx, y + row * scale + dy, color);
+                                self.set(
+                                    x + (k * 6 + col) * scale + dx,
+                                    y + row * scale + dy,
+                                    color,
+                                );
                             }
                         }
                     }
@@ -113,8 +123,12 @@ pub fn false_color(image: &Image, title: &str, unit: &str) -> (u32, u32, Vec<u8>
     let values = scalar(image);
     let mut sorted: Vec<f32> = values.iter().copied().filter(|v| v.is_finite()).collect();
     sorted.sort_by(|a, b| a.total_cmp(b));
-    let top = sorted.get(((sorted.len() as f64 * 0.995) as usize).min(sorted.len().saturating_sub(1))).copied().unwrap_or(1.0);
-    let top = if top > 0.0 { top } else { sorted.last().copied().filter(|v| *v > 0.0).unwrap_or(1.0) };
+    let top = sorted
+        .get(((sorted.len() as f64 * 0.995) as usize).min(sorted.len().saturating_sub(1)))
+        .copied()
+        .unwrap_or(1.0);
+    let top =
+        if top > 0.0 { top } else { sorted.last().copied().filter(|v| *v > 0.0).unwrap_or(1.0) };
 
     let (iw, ih) = (image.width as usize, image.height as usize);
     let scale = if ih >= 400 { 2 } else { 1 };
@@ -158,7 +172,8 @@ pub fn false_color(image: &Image, title: &str, unit: &str) -> (u32, u32, Vec<u8>
 /// Writes [`false_color`] as a PNG.
 pub fn false_color_png(path: &Path, image: &Image, title: &str, unit: &str) -> Result<(), String> {
     let (w, h, rgb) = false_color(image, title, unit);
-    std::fs::write(path, encode_png_rgb8(w, h, &rgb)).map_err(|e| format!("cannot write {}: {e}", path.display()))
+    std::fs::write(path, encode_png_rgb8(w, h, &rgb))
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 #[cfg(test)]

@@ -113,12 +113,7 @@ impl Film {
     /// A block for the film pixels `offset .. offset + size`, using the film's filter; it never
     /// writes pixels outside the film.
     pub fn create_block(&self, offset: UVec2, size: UVec2) -> ImageBlock {
-        ImageBlock::with_clip(
-            offset,
-            size,
-            &self.filter,
-            [self.width as i64, self.height as i64],
-        )
+        ImageBlock::with_clip(offset, size, &self.filter, [self.width as i64, self.height as i64])
     }
 
     /// Number of non-finite samples dropped by the merged blocks.
@@ -128,10 +123,7 @@ impl Film {
 
     /// The sums of pixel (x, y). Panics outside the film.
     pub fn pixel(&self, x: u32, y: u32) -> &PixelAccum {
-        assert!(
-            x < self.width && y < self.height,
-            "pixel ({x}, {y}) outside film"
-        );
+        assert!(x < self.width && y < self.height, "pixel ({x}, {y}) outside film");
         &self.data[y as usize * self.width as usize + x as usize]
     }
 
@@ -184,11 +176,7 @@ impl Film {
         for p in &self.data {
             data.extend(p.mean().map(|v| v as f32));
         }
-        Image {
-            width: self.width,
-            height: self.height,
-            data,
-        }
+        Image { width: self.width, height: self.height, data }
     }
 
     /// A per-pixel, per-channel standard error estimate of the developed value.
@@ -221,11 +209,7 @@ impl Film {
                 data.push((v / (n_eff - 1.0)).sqrt() as f32);
             }
         }
-        Image {
-            width: self.width,
-            height: self.height,
-            data,
-        }
+        Image { width: self.width, height: self.height, data }
     }
 }
 
@@ -282,15 +266,9 @@ mod tests {
                 let (p, q) = (a.pixel(x, y), b.pixel(x, y));
                 let close =
                     |u: f64, v: f64| (u - v).abs() <= 1e-12 * u.abs().max(v.abs()).max(1e-300);
-                assert!(
-                    close(p.w, q.w) && close(p.w2, q.w2),
-                    "({x},{y}) {p:?} vs {q:?}"
-                );
+                assert!(close(p.w, q.w) && close(p.w2, q.w2), "({x},{y}) {p:?} vs {q:?}");
                 for c in 0..3 {
-                    assert!(
-                        close(p.wl[c], q.wl[c]) && close(p.wl2[c], q.wl2[c]),
-                        "({x},{y})"
-                    );
+                    assert!(close(p.wl[c], q.wl[c]) && close(p.wl2[c], q.wl2[c]), "({x},{y})");
                 }
             }
         }
@@ -301,19 +279,14 @@ mod tests {
         let f = ReconstructionFilter::default();
         assert!(Film::new(0, 10, f).is_err());
         assert!(Film::new(10, 0, f).is_err());
-        assert!(Film::new(MAX_FILM_SIZE + 1, 2, f)
-            .unwrap_err()
-            .contains("too large"));
+        assert!(Film::new(MAX_FILM_SIZE + 1, 2, f).unwrap_err().contains("too large"));
         assert!(Film::new(1, 1, f).is_ok());
         let d = Film::default();
         assert_eq!((d.width, d.height), (768, 576));
         assert!(matches!(d.filter, ReconstructionFilter::Gaussian(g) if g.stddev() == 0.5));
         assert_eq!(d.component_format, ComponentFormat::Float16);
         assert!(!d.sample_border);
-        assert_eq!(
-            ComponentFormat::parse("float32"),
-            Ok(ComponentFormat::Float32)
-        );
+        assert_eq!(ComponentFormat::parse("float32"), Ok(ComponentFormat::Float32));
         assert!(ComponentFormat::parse("uint8").is_err());
     }
 
@@ -359,11 +332,7 @@ mod tests {
                 }
             }
             let total: f64 = single.data.iter().map(|p| p.w).sum();
-            assert!(
-                (total - expect_w).abs() <= 1e-9 * expect_w,
-                "{}",
-                f.plugin_name()
-            );
+            assert!((total - expect_w).abs() <= 1e-9 * expect_w, "{}", f.plugin_name());
         }
     }
 
@@ -425,10 +394,7 @@ mod tests {
         }
         // The f32 running sum that this guards against is visibly wrong.
         let naive_mean = naive_f32 as f64 / N as f64;
-        assert!(
-            (naive_mean - exact_mean).abs() > 1e-3 * exact_mean,
-            "{naive_mean}"
-        );
+        assert!((naive_mean - exact_mean).abs() > 1e-3 * exact_mean, "{naive_mean}");
     }
 
     /// Mean and standard deviation of U[0,1): 1/2 and 1/√12; its kurtosis is 9/5.
@@ -446,10 +412,7 @@ mod tests {
             for x in 0..w {
                 for _ in 0..N {
                     let p = Vec2::new(x as f32 + rng.next_f32(), y as f32 + rng.next_f32());
-                    b.put(
-                        p,
-                        Spectrum::new(rng.next_f32(), rng.next_f32(), rng.next_f32()),
-                    );
+                    b.put(p, Spectrum::new(rng.next_f32(), rng.next_f32(), rng.next_f32()));
                 }
             }
         }
@@ -466,11 +429,7 @@ mod tests {
             sum_rel += rel;
         }
         let m = se.data.len() as f64;
-        assert!(
-            (sum_rel / m).abs() < 5.0 * rel_sd / m.sqrt(),
-            "mean bias {}",
-            sum_rel / m
-        );
+        assert!((sum_rel / m).abs() < 5.0 * rel_sd / m.sqrt(), "mean bias {}", sum_rel / m);
     }
 
     #[test]
@@ -482,10 +441,7 @@ mod tests {
         let mut rng = Pcg32::new(99, 2);
         for _ in 0..200_000 {
             let p = Vec2::new(rng.next_f32() * 6.0, rng.next_f32() * 6.0);
-            b.put(
-                p,
-                Spectrum::new(rng.next_f32(), rng.next_f32(), rng.next_f32()),
-            );
+            b.put(p, Spectrum::new(rng.next_f32(), rng.next_f32(), rng.next_f32()));
         }
         film.merge(&b);
         let se = film.develop_stderr();
@@ -545,10 +501,7 @@ mod tests {
         let mut film = Film::new(4, 4, ReconstructionFilter::default()).unwrap();
         let mut b = film.create_block(UVec2::ZERO, film.size());
         b.put(Vec2::new(1.0, 1.0), Spectrum::new(f32::NAN, 0.0, 0.0));
-        b.put(
-            Vec2::new(1.0, 1.0),
-            Spectrum::new(0.0, f32::NEG_INFINITY, 0.0),
-        );
+        b.put(Vec2::new(1.0, 1.0), Spectrum::new(0.0, f32::NEG_INFINITY, 0.0));
         film.merge(&b);
         assert_eq!(film.dropped(), 2);
         assert!(film.develop().data.iter().all(|v| *v == 0.0));

@@ -14,11 +14,7 @@ pub struct Image {
 impl Image {
     /// A black image.
     pub fn new(width: u32, height: u32) -> Image {
-        Image {
-            width,
-            height,
-            data: vec![0.0; width as usize * height as usize * 3],
-        }
+        Image { width, height, data: vec![0.0; width as usize * height as usize * 3] }
     }
 
     /// An image from interleaved RGB data; errors if the length is not `width·height·3`.
@@ -30,11 +26,7 @@ impl Image {
                 data.len()
             ));
         }
-        Ok(Image {
-            width,
-            height,
-            data,
-        })
+        Ok(Image { width, height, data })
     }
 
     /// Number of pixels.

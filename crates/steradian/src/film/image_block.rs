@@ -99,19 +99,13 @@ impl ImageBlock {
         clip_max: [i64; 2],
     ) -> ImageBlock {
         let border = filter.border_size();
-        let stride = [
-            size.x as i64 + 2 * border as i64,
-            size.y as i64 + 2 * border as i64,
-        ];
+        let stride = [size.x as i64 + 2 * border as i64, size.y as i64 + 2 * border as i64];
         ImageBlock {
             offset,
             size,
             border,
             filter: *filter,
-            origin: [
-                offset.x as i64 - border as i64,
-                offset.y as i64 - border as i64,
-            ],
+            origin: [offset.x as i64 - border as i64, offset.y as i64 - border as i64],
             stride,
             clip_max,
             data: vec![PixelAccum::default(); (stride[0] * stride[1]) as usize],
@@ -147,10 +141,7 @@ impl ImageBlock {
     /// Moves the block to another rectangle of the same size and clears it (reuses storage).
     pub fn set_offset(&mut self, offset: UVec2) {
         self.offset = offset;
-        self.origin = [
-            offset.x as i64 - self.border as i64,
-            offset.y as i64 - self.border as i64,
-        ];
+        self.origin = [offset.x as i64 - self.border as i64, offset.y as i64 - self.border as i64];
         self.clear();
     }
 
@@ -259,9 +250,7 @@ impl ImageBlock {
     fn axis_range(&self, p: f32, axis: usize) -> Option<(usize, i64, usize)> {
         let r = self.filter.radius();
         // Pixel j qualifies when |j + 0.5 − p| < r, i.e. p − 0.5 − r < j < p − 0.5 + r.
-        let lo = ((p - 0.5 - r).floor() as i64 + 1)
-            .max(0)
-            .max(self.origin[axis]);
+        let lo = ((p - 0.5 - r).floor() as i64 + 1).max(0).max(self.origin[axis]);
         let hi = ((p - 0.5 + r).ceil() as i64 - 1)
             .min(self.clip_max[axis] - 1)
             .min(self.origin[axis] + self.stride[axis] - 1);

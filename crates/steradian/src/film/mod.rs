@@ -12,8 +12,8 @@ pub mod png;
 
 pub use self::exr::{read_exr, write_exr, write_exr_layers, write_exr_layers_as};
 pub use self::png::{encode_png_rgb8, read_png_rgb8, srgb_encode_u8, write_png};
+pub use falsecolor::{false_color, false_color_png};
 pub use film::{ComponentFormat, Film, MAX_FILM_SIZE};
 pub use filter::{BoxFilter, GaussianFilter, ReconstructionFilter, TentFilter};
-pub use falsecolor::{false_color, false_color_png};
 pub use image::{mse, rel_mse, Image};
 pub use image_block::{ImageBlock, PixelAccum};

@@ -13,16 +13,8 @@ use super::image::Image;
 /// sRGB-encodes one linear value (after clamping to [0, 1]) to 8 bits, rounding to nearest.
 #[inline]
 pub fn srgb_encode_u8(linear: f32) -> u8 {
-    let x = if linear.is_nan() {
-        0.0
-    } else {
-        linear.clamp(0.0, 1.0)
-    };
-    let v = if x <= 0.0031308 {
-        12.92 * x
-    } else {
-        1.055 * x.powf(1.0 / 2.4) - 0.055
-    };
+    let x = if linear.is_nan() { 0.0 } else { linear.clamp(0.0, 1.0) };
+    let v = if x <= 0.0031308 { 12.92 * x } else { 1.055 * x.powf(1.0 / 2.4) - 0.055 };
     (v * 255.0).round().clamp(0.0, 255.0) as u8
 }
 
@@ -62,11 +54,7 @@ pub fn write_png(path: &Path, image: &Image, exposure_scale: f32) -> Result<(), 
     if image.data.len() != 3 * image.pixel_count() {
         return Err(err("image data length does not match its size".into()));
     }
-    let rgb: Vec<u8> = image
-        .data
-        .iter()
-        .map(|&v| srgb_encode_u8(v * exposure_scale))
-        .collect();
+    let rgb: Vec<u8> = image.data.iter().map(|&v| srgb_encode_u8(v * exposure_scale)).collect();
     let file = File::create(path).map_err(|e| err(e.to_string()))?;
     encode_to(BufWriter::new(file), image.width, image.height, &rgb).map_err(err)
 }
@@ -80,9 +68,7 @@ pub fn read_png_rgb8(path: &Path) -> Result<(u32, u32, Vec<u8>), String> {
     dec.set_transformations(::png::Transformations::normalize_to_color8());
     let mut reader = dec.read_info().map_err(|e| err(e.to_string()))?;
     let mut buf = vec![0u8; reader.output_buffer_size()];
-    let info = reader
-        .next_frame(&mut buf)
-        .map_err(|e| err(e.to_string()))?;
+    let info = reader.next_frame(&mut buf).map_err(|e| err(e.to_string()))?;
     let (w, h) = (info.width, info.height);
     let n = w as usize * h as usize;
     let channels = match info.color_type {
@@ -156,9 +142,7 @@ mod tests {
         let q = tmp("mem.png");
         std::fs::write(&q, bytes).unwrap();
         assert_eq!(read_png_rgb8(&q).unwrap().2, want);
-        assert!(read_png_rgb8(&tmp("missing.png"))
-            .unwrap_err()
-            .contains("missing.png"));
+        assert!(read_png_rgb8(&tmp("missing.png")).unwrap_err().contains("missing.png"));
         std::fs::remove_file(p).ok();
         std::fs::remove_file(q).ok();
     }

@@ -1,5 +1,5 @@
-use glam::Vec3;
 use crate::shape::is_positive;
+use glam::Vec3;
 
 /// An orthonormal frame (s, t, n). Converts between world space and a local space in which
 /// `n` is +z, so that `to_local(w).z = cos θ`.
@@ -52,11 +52,19 @@ mod tests {
 
     #[test]
     fn frames_are_orthonormal_and_invert() {
-        for n in [Vec3::Z, -Vec3::Z, Vec3::X, Vec3::new(0.3, -0.4, 0.866).normalize(), Vec3::new(1e-8, 0.0, -1.0).normalize()] {
+        for n in [
+            Vec3::Z,
+            -Vec3::Z,
+            Vec3::X,
+            Vec3::new(0.3, -0.4, 0.866).normalize(),
+            Vec3::new(1e-8, 0.0, -1.0).normalize(),
+        ] {
             let f = Frame::from_normal(n);
             assert!((f.s.length() - 1.0).abs() < 1e-5);
             assert!((f.t.length() - 1.0).abs() < 1e-5);
-            assert!(f.s.dot(f.t).abs() < 1e-5 && f.s.dot(n).abs() < 1e-5 && f.t.dot(n).abs() < 1e-5);
+            assert!(
+                f.s.dot(f.t).abs() < 1e-5 && f.s.dot(n).abs() < 1e-5 && f.t.dot(n).abs() < 1e-5
+            );
             // right-handed: s × t = n
             assert!((f.s.cross(f.t) - n).length() < 1e-5);
             let v = Vec3::new(0.2, -0.7, 0.5);

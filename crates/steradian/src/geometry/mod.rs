@@ -4,8 +4,8 @@ mod aabb;
 mod frame;
 
 mod ray;
-pub mod trig;
 mod transform;
+pub mod trig;
 
 pub use aabb::Aabb;
 pub use frame::Frame;

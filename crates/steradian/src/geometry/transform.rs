@@ -95,7 +95,12 @@ impl Transform {
         }
         let left = left.normalize();
         let new_up = dir.cross(left);
-        let m = Mat4::from_cols(left.extend(0.0), new_up.extend(0.0), dir.extend(0.0), origin.extend(1.0));
+        let m = Mat4::from_cols(
+            left.extend(0.0),
+            new_up.extend(0.0),
+            dir.extend(0.0),
+            origin.extend(1.0),
+        );
         Self::from_matrix(m)
     }
 

@@ -131,7 +131,15 @@ struct PilotPixel {
 /// The branch count for `tracer` on this film: the pilot's choice, or `None` when the render
 /// is too small for a pilot or the sensor is an irradiance meter (whose samples start on a
 /// surface, not with a camera ray). `sampler` is the render's (kind and seed).
-pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, height: u32, spp: u32, sampler: &Sampler) -> Option<Pilot> {
+pub fn pilot(
+    tracer: &PathTracer,
+    scene: &Scene,
+    sensor: &Sensor,
+    width: u32,
+    height: u32,
+    spp: u32,
+    sampler: &Sampler,
+) -> Option<Pilot> {
     if sensor.quantity() == Quantity::Irradiance {
         return None;
     }
@@ -151,13 +159,22 @@ pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, he
         return None;
     }
     let probes = CANDIDATES.map(|n| PathTracer { branches: Branches::Fixed(n), ..tracer.clone() });
-    let samplers: Vec<Sampler> =
-        (0..replicates).map(|r| Sampler { kind: sampler.kind, sample_count: s, seed: mix64(sampler.seed ^ PILOT_SALT).wrapping_add(r as u64) }).collect();
+    let samplers: Vec<Sampler> = (0..replicates)
+        .map(|r| Sampler {
+            kind: sampler.kind,
+            sample_count: s,
+            seed: mix64(sampler.seed ^ PILOT_SALT).wrapping_add(r as u64),
+        })
+        .collect();
     let measured: Vec<PilotPixel> = (0..pixels)
         .into_par_iter()
         .map(|i| {
             // every pixel of a small film; otherwise pixels drawn at random over the film
-            let k = if pixels as u64 == film_pixels { i as u64 } else { mix64(sampler.seed ^ PILOT_SALT ^ mix64(i as u64)) % film_pixels };
+            let k = if pixels as u64 == film_pixels {
+                i as u64
+            } else {
+                mix64(sampler.seed ^ PILOT_SALT ^ mix64(i as u64)) % film_pixels
+            };
             let pixel = UVec2::new((k % width as u64) as u32, (k / width as u64) as u32);
             let mut out = PilotPixel::default();
             for (c, (&n, probe)) in CANDIDATES.iter().zip(&probes).enumerate() {
@@ -175,10 +192,17 @@ pub fn pilot(tracer: &PathTracer, scene: &Scene, sensor: &Sensor, width: u32, he
                         values[start] = luminance(first) as f64;
                         out.rays[c] += rays.0 as u64;
                         if let Some((si, st)) = hit {
-                            probe.for_each_branch(scene, &si, st, &mut ps, n, |b, l, rays: RayCount| {
-                                values[start + 1 + b] = luminance(l) as f64;
-                                out.rays[c] += rays.0 as u64;
-                            });
+                            probe.for_each_branch(
+                                scene,
+                                &si,
+                                st,
+                                &mut ps,
+                                n,
+                                |b, l, rays: RayCount| {
+                                    values[start + 1 + b] = luminance(l) as f64;
+                                    out.rays[c] += rays.0 as u64;
+                                },
+                            );
                         }
                         // the render drops a sample that is not finite; here such a value counts
                         // as 0, so that it cannot poison the variances (it shapes only the choice)
@@ -203,7 +227,8 @@ fn choose(pixels: &[PilotPixel], replicates: u32, spp: u32) -> Pilot {
     // Fireflies (rare, bright paths) would decide the estimates alone: values are clamped at
     // the (1 − CLAMP_TAIL) quantile of all values. This only shapes the choice of N, never
     // the image; the same clamp applies to every candidate.
-    let mut all: Vec<f64> = pixels.iter().flat_map(|p| p.values.iter().flatten().copied()).collect();
+    let mut all: Vec<f64> =
+        pixels.iter().flat_map(|p| p.values.iter().flatten().copied()).collect();
     let clamp = if all.is_empty() {
         f64::INFINITY
     } else {
@@ -216,13 +241,22 @@ fn choose(pixels: &[PilotPixel], replicates: u32, spp: u32) -> Pilot {
         .map(|p| {
             std::array::from_fn(|c| {
                 let per_sample = 1 + CANDIDATES[c] as usize;
-                let y = |v: &[f64]| v[0].min(clamp) + v[1..].iter().map(|x| x.min(clamp)).sum::<f64>() / CANDIDATES[c] as f64;
-                p.values[c].chunks_exact(per_sample * s).map(|rep| rep.chunks_exact(per_sample).map(y).sum::<f64>() / s as f64).collect()
+                let y = |v: &[f64]| {
+                    v[0].min(clamp)
+                        + v[1..].iter().map(|x| x.min(clamp)).sum::<f64>() / CANDIDATES[c] as f64
+                };
+                p.values[c]
+                    .chunks_exact(per_sample * s)
+                    .map(|rep| rep.chunks_exact(per_sample).map(y).sum::<f64>() / s as f64)
+                    .collect()
             })
         })
         .collect();
     // each pixel's mean over all its replicates of all candidates
-    let mus: Vec<f64> = means.iter().map(|m| m.iter().flatten().sum::<f64>() / (CANDIDATES.len() * r) as f64).collect();
+    let mus: Vec<f64> = means
+        .iter()
+        .map(|m| m.iter().flatten().sum::<f64>() / (CANDIDATES.len() * r) as f64)
+        .collect();
     let mean_of_means = mus.iter().sum::<f64>() / mus.len().max(1) as f64;
     let eps = 1e-2 * mean_of_means * mean_of_means + f64::MIN_POSITIVE;
     let mut variance = [0.0; CANDIDATES.len()];
@@ -235,10 +269,25 @@ fn choose(pixels: &[PilotPixel], replicates: u32, spp: u32) -> Pilot {
             variance[c] += w * s2 * s as f64;
         }
     }
-    let cost: [f64; CANDIDATES.len()] = std::array::from_fn(|c| CAMERA_SAMPLE_COST + pixels.iter().map(|p| p.rays[c]).sum::<u64>() as f64 / samples_per_candidate);
-    let Fit { cost_first, cost_branch, var_first, var_branch, branches } = best_count(variance, cost);
+    let cost: [f64; CANDIDATES.len()] = std::array::from_fn(|c| {
+        CAMERA_SAMPLE_COST
+            + pixels.iter().map(|p| p.rays[c]).sum::<u64>() as f64 / samples_per_candidate
+    });
+    let Fit { cost_first, cost_branch, var_first, var_branch, branches } =
+        best_count(variance, cost);
     let samples = samples_per_candidate as u64 * CANDIDATES.len() as u64;
-    Pilot { samples, spp, replicates, variance, cost, cost_first, cost_branch, var_first, var_branch, branches }
+    Pilot {
+        samples,
+        spp,
+        replicates,
+        variance,
+        cost,
+        cost_first,
+        cost_branch,
+        var_first,
+        var_branch,
+        branches,
+    }
 }
 
 /// The model fitted to the candidates' measurements (see [`Pilot`] for the fields), and the
@@ -262,7 +311,8 @@ fn best_count(variance: [f64; CANDIDATES.len()], cost: [f64; CANDIDATES.len()]) 
     let (cost_first, cost_branch) = fit_line(&n, &cost, &[1.0; CANDIDATES.len()]);
     let vmax = variance.iter().fold(0.0f64, |m, &v| m.max(v));
     let tiny = (1e-12 * vmax) * (1e-12 * vmax) + f64::MIN_POSITIVE;
-    let (var_first, var_branch) = fit_line(&n.map(|n| 1.0 / n), &variance, &variance.map(|v| 1.0 / (v * v + tiny)));
+    let (var_first, var_branch) =
+        fit_line(&n.map(|n| 1.0 / n), &variance, &variance.map(|v| 1.0 / (v * v + tiny)));
     let (vb, vw) = (var_first.max(0.0), var_branch.max(0.0));
     let model = |n: f64| (vb + vw / n) * (cost_first + n * cost_branch);
     let mut best = 0;
@@ -293,7 +343,12 @@ mod tests {
     /// A pixel whose camera sample `i` of replicate `rep` (of S) has the first-hit value
     /// `first(rep, i)` and branch values `branch(n, rep, i, b)`; every sample traces 1 ray
     /// before the split and 2 per branch.
-    fn pixel(r: u32, s: u32, first: impl Fn(u32, u32) -> f64, branch: impl Fn(u32, u32, u32, u32) -> f64) -> PilotPixel {
+    fn pixel(
+        r: u32,
+        s: u32,
+        first: impl Fn(u32, u32) -> f64,
+        branch: impl Fn(u32, u32, u32, u32) -> f64,
+    ) -> PilotPixel {
         let mut p = PilotPixel::default();
         for (c, &n) in CANDIDATES.iter().enumerate() {
             for rep in 0..r {
@@ -313,7 +368,11 @@ mod tests {
         let p = pixel(4, 2, |rep, i| (rep * 2 + i) as f64 * 0.25, |_, rep, _, _| 1.0 + rep as f64);
         let c = choose(&[p.clone(), p], 4, 2);
         assert_eq!(c.branches, 1, "{c:?}");
-        assert!(c.variance.iter().all(|&v| v == c.variance[0]) && c.var_branch.abs() <= 1e-12 * c.var_first, "{c:?}");
+        assert!(
+            c.variance.iter().all(|&v| v == c.variance[0])
+                && c.var_branch.abs() <= 1e-12 * c.var_first,
+            "{c:?}"
+        );
         // C(N) = 1 + 1 + 2N: the camera sample's cost, the first ray, two rays per branch
         assert!((c.cost_first - 2.0).abs() < 1e-12 && (c.cost_branch - 2.0).abs() < 1e-12, "{c:?}");
     }
@@ -325,7 +384,22 @@ mod tests {
     #[test]
     fn replicate_variances_and_costs() {
         let (a, b) = (1.0, 8.0);
-        let p = pixel(4, 1, |rep, _| if rep % 2 == 0 { 0.0 } else { 2.0 * a }, |_, rep, _, k| 1.0 + if k == 0 { if rep < 2 { b } else { -b } } else { 0.0 });
+        let p = pixel(
+            4,
+            1,
+            |rep, _| if rep % 2 == 0 { 0.0 } else { 2.0 * a },
+            |_, rep, _, k| {
+                1.0 + if k == 0 {
+                    if rep < 2 {
+                        b
+                    } else {
+                        -b
+                    }
+                } else {
+                    0.0
+                }
+            },
+        );
         let c = choose(&[p], 4, 1);
         for ((v, n), cost) in c.variance.iter().zip(CANDIDATES).zip(c.cost) {
             let expected = c.variance[0] * (a * a + b * b / (n * n) as f64) / (a * a + b * b);
@@ -338,8 +412,15 @@ mod tests {
     #[test]
     fn the_count_follows_the_model() {
         let pick = |vb: f64, vw: f64, c1: f64, c2: f64| {
-            let p = best_count(CANDIDATES.map(|n| vb + vw / n as f64), CANDIDATES.map(|n| c1 + c2 * n as f64));
-            assert!((p.var_first - vb).abs() <= 1e-9 * (vb + vw) && (p.var_branch - vw).abs() <= 1e-9 * (vb + vw), "{p:?}");
+            let p = best_count(
+                CANDIDATES.map(|n| vb + vw / n as f64),
+                CANDIDATES.map(|n| c1 + c2 * n as f64),
+            );
+            assert!(
+                (p.var_first - vb).abs() <= 1e-9 * (vb + vw)
+                    && (p.var_branch - vw).abs() <= 1e-9 * (vb + vw),
+                "{p:?}"
+            );
             p.branches
         };
         // N* = √(2·16/(2·1)) = 4

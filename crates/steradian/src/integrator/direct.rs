@@ -14,8 +14,8 @@
 use glam::{Vec2, Vec3};
 
 use super::mis::power_heuristic;
-use super::LightSelection;
 use super::path::EmitterVisibility;
+use super::LightSelection;
 use crate::bsdf::{Lobe, ShadingPoint};
 use crate::emitter::Support;
 use crate::geometry::Ray;
@@ -34,7 +34,12 @@ pub struct DirectIntegrator {
 
 impl Default for DirectIntegrator {
     fn default() -> Self {
-        DirectIntegrator { emitter_samples: 1, bsdf_samples: 1, emitters: EmitterVisibility::Visible, light_selection: LightSelection::Uniform }
+        DirectIntegrator {
+            emitter_samples: 1,
+            bsdf_samples: 1,
+            emitters: EmitterVisibility::Visible,
+            light_selection: LightSelection::Uniform,
+        }
     }
 }
 
@@ -43,7 +48,9 @@ impl DirectIntegrator {
         let show = self.emitters == EmitterVisibility::Visible;
         let Some(si) = scene.intersect(ray) else {
             return match (scene.environment, show) {
-                (Some(env), true) => scene.emitters[env as usize].radiance(-ray.d, Vec3::ZERO, Vec2::ZERO),
+                (Some(env), true) => {
+                    scene.emitters[env as usize].radiance(-ray.d, Vec3::ZERO, Vec2::ZERO)
+                }
                 _ => Spectrum::ZERO,
             };
         };
@@ -58,7 +65,9 @@ impl DirectIntegrator {
 
         if bsdf.has_smooth_lobe() {
             for _ in 0..self.emitter_samples {
-                let Some(es) = scene.sample_emitter_direction(si.p, sampler.next_2d()) else { continue };
+                let Some(es) = scene.sample_emitter_direction(si.p, sampler.next_2d()) else {
+                    continue;
+                };
                 let wi = si.to_local(es.wi);
                 let f = bsdf.eval(&sp, wo, wi) * wi.z.abs();
                 if f == Spectrum::ZERO || !scene.unoccluded(si.p, si.n, &es) {
@@ -66,7 +75,9 @@ impl DirectIntegrator {
                 }
                 let w = match es.support {
                     Support::Delta => 1.0,
-                    Support::Extended if nb > 0.0 => power_heuristic(es.pdf * ne, bsdf.pdf(&sp, wo, wi) * nb),
+                    Support::Extended if nb > 0.0 => {
+                        power_heuristic(es.pdf * ne, bsdf.pdf(&sp, wo, wi) * nb)
+                    }
                     Support::Extended => 1.0,
                 };
                 result += f * es.weight * (w / ne);
@@ -80,11 +91,17 @@ impl DirectIntegrator {
             let next = si.spawn_ray(d);
             let (le, e, light) = match scene.intersect(&next) {
                 Some(hit) => match scene.area_emitter(&hit) {
-                    Some((e, emitter)) => (emitter.radiance(hit.wo, hit.n, hit.uv), e, hit.surface_point()),
+                    Some((e, emitter)) => {
+                        (emitter.radiance(hit.wo, hit.n, hit.uv), e, hit.surface_point())
+                    }
                     None => continue,
                 },
                 None => match scene.environment {
-                    Some(env) => (scene.emitters[env as usize].radiance(-d, Vec3::ZERO, Vec2::ZERO), env, SurfacePoint::AT_INFINITY),
+                    Some(env) => (
+                        scene.emitters[env as usize].radiance(-d, Vec3::ZERO, Vec2::ZERO),
+                        env,
+                        SurfacePoint::AT_INFINITY,
+                    ),
                     None => continue,
                 },
             };
@@ -93,9 +110,10 @@ impl DirectIntegrator {
             }
             let w = match bs.lobe {
                 Lobe::Delta => 1.0,
-                Lobe::Smooth if ne > 0.0 && bsdf.has_smooth_lobe() => {
-                    power_heuristic(bs.pdf * nb, scene.pdf_emitter_direction(e, si.p, d, &light) * ne)
-                }
+                Lobe::Smooth if ne > 0.0 && bsdf.has_smooth_lobe() => power_heuristic(
+                    bs.pdf * nb,
+                    scene.pdf_emitter_direction(e, si.p, d, &light) * ne,
+                ),
                 Lobe::Smooth => 1.0,
             };
             result += bs.weight * le * (w / nb);

@@ -46,7 +46,13 @@ fn reflected_only(integrator: &Integrator) -> Option<Integrator> {
 
 /// One-sample estimate of the irradiance (W/m², per channel) at `p` on the side of the unit
 /// normal `n` (geometric normal of the surface, used to offset rays).
-pub fn estimate_irradiance(scene: &Scene, integrator: &Integrator, p: Vec3, n: Vec3, sampler: &mut PixelSampler) -> Spectrum {
+pub fn estimate_irradiance(
+    scene: &Scene,
+    integrator: &Integrator,
+    p: Vec3,
+    n: Vec3,
+    sampler: &mut PixelSampler,
+) -> Spectrum {
     if let Integrator::Path(pt) = integrator {
         if pt.max_depth == Some(0) {
             return Spectrum::ZERO;

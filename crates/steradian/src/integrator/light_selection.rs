@@ -35,7 +35,12 @@ impl LightSelection {
     }
 
     /// The probability of choosing each emitter, and their running sum (last entry exactly 1).
-    pub fn distribution(self, emitters: &[Emitter], shapes: &[Shape], bounds: Aabb) -> (Vec<f32>, Vec<f32>) {
+    pub fn distribution(
+        self,
+        emitters: &[Emitter],
+        shapes: &[Shape],
+        bounds: Aabb,
+    ) -> (Vec<f32>, Vec<f32>) {
         let n = emitters.len();
         if n == 0 {
             return (vec![], vec![]);
@@ -43,12 +48,22 @@ impl LightSelection {
         let pmf: Vec<f32> = match self {
             LightSelection::Uniform => vec![1.0 / n as f32; n],
             LightSelection::Power => {
-                let radius = if bounds.is_empty() { 1.0 } else { 0.5 * (bounds.max - bounds.min).length() };
-                let flux: Vec<f32> = emitters.iter().map(|e| crate::spectrum::luminance(e.flux(shapes, radius))).collect();
+                let radius =
+                    if bounds.is_empty() { 1.0 } else { 0.5 * (bounds.max - bounds.min).length() };
+                let flux: Vec<f32> = emitters
+                    .iter()
+                    .map(|e| crate::spectrum::luminance(e.flux(shapes, radius)))
+                    .collect();
                 // lights whose flux is zero or not finite count as average
-                let valid: Vec<f32> = flux.iter().copied().filter(|f| f.is_finite() && *f > 0.0).collect();
-                let mean = if valid.is_empty() { 1.0 } else { valid.iter().sum::<f32>() / valid.len() as f32 };
-                let flux: Vec<f32> = flux.iter().map(|&f| if f.is_finite() && f > 0.0 { f } else { mean }).collect();
+                let valid: Vec<f32> =
+                    flux.iter().copied().filter(|f| f.is_finite() && *f > 0.0).collect();
+                let mean = if valid.is_empty() {
+                    1.0
+                } else {
+                    valid.iter().sum::<f32>() / valid.len() as f32
+                };
+                let flux: Vec<f32> =
+                    flux.iter().map(|&f| if f.is_finite() && f > 0.0 { f } else { mean }).collect();
                 let total: f32 = flux.iter().sum();
                 flux.iter().map(|f| 0.5 * f / total + 0.5 / n as f32).collect()
             }
@@ -80,7 +95,11 @@ mod tests {
             Emitter::Point(PointLight::new(Vec3::ONE, Spectrum::splat(3.0))),
         ];
         let (pmf, cdf) = LightSelection::Power.distribution(&lights, &[], Aabb::default());
-        assert!((pmf[0] - (0.5 * 0.25 + 0.25)).abs() < 1e-6 && (pmf[1] - (0.5 * 0.75 + 0.25)).abs() < 1e-6, "{pmf:?}");
+        assert!(
+            (pmf[0] - (0.5 * 0.25 + 0.25)).abs() < 1e-6
+                && (pmf[1] - (0.5 * 0.75 + 0.25)).abs() < 1e-6,
+            "{pmf:?}"
+        );
         assert_eq!(cdf[1], 1.0);
         let (pmf, _) = LightSelection::Uniform.distribution(&lights, &[], Aabb::default());
         assert_eq!(pmf, vec![0.5, 0.5]);

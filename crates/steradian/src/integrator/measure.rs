@@ -94,13 +94,26 @@ mod tests {
             block.put(Vec2::new(1.5, 0.5), crate::Spectrum::splat(5.0));
         }
         film.merge(&block);
-        let out = RenderOutput { film, branches: Some(3), pilot: None, spp: 2, spp_requested: 2, dropped_samples: 0, elapsed: Duration::ZERO, interrupted: false };
+        let out = RenderOutput {
+            film,
+            branches: Some(3),
+            pilot: None,
+            spp: 2,
+            spp_requested: 2,
+            dropped_samples: 0,
+            elapsed: Duration::ZERO,
+            interrupted: false,
+        };
         let m = Measurement::from_render(&out, 0, Quantity::Radiance);
         let se = out.film.develop_stderr();
         for c in 0..3 {
             assert!((m.value[c] - 3.5).abs() < 1e-6, "{:?}", m.value);
             let want = ((se.data[c] as f64).powi(2) + (se.data[3 + c] as f64).powi(2)).sqrt() / 2.0;
-            assert!((m.stderr[c] - want).abs() <= 1e-12 * want.max(1.0), "{:?} vs {want}", m.stderr);
+            assert!(
+                (m.stderr[c] - want).abs() <= 1e-12 * want.max(1.0),
+                "{:?} vs {want}",
+                m.stderr
+            );
             assert!(m.stderr[c] > 0.0);
         }
         assert_eq!(m.unit(), "W/(m²·sr)");

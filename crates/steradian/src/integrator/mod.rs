@@ -15,7 +15,10 @@ pub use direct::DirectIntegrator;
 pub use irradiance::estimate_irradiance;
 pub use light_selection::LightSelection;
 pub use measure::{measure, Measurement};
-pub use path::{parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LastVertex, PathTracer, DEFAULT_BRANCHES, DEFAULT_RR_SCALE, MAX_BRANCHES};
+pub use path::{
+    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LastVertex,
+    PathTracer, DEFAULT_BRANCHES, DEFAULT_RR_SCALE, MAX_BRANCHES,
+};
 pub use render::{render, PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};
 
 use crate::geometry::Ray;

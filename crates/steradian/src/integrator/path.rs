@@ -147,7 +147,15 @@ impl Branches {
 
 impl Default for PathTracer {
     fn default() -> Self {
-        PathTracer { max_depth: None, rr_depth: 5, rr_scale: DEFAULT_RR_SCALE, emitters: EmitterVisibility::Visible, light_selection: LightSelection::Uniform, branches: Branches::Auto, last_vertex: LastVertex::default() }
+        PathTracer {
+            max_depth: None,
+            rr_depth: 5,
+            rr_scale: DEFAULT_RR_SCALE,
+            emitters: EmitterVisibility::Visible,
+            light_selection: LightSelection::Uniform,
+            branches: Branches::Auto,
+            last_vertex: LastVertex::default(),
+        }
     }
 }
 
@@ -230,7 +238,15 @@ pub(super) struct PathState {
 
 impl PathState {
     fn camera(ray: &Ray) -> PathState {
-        PathState { beta: Spectrum::ONE, eta: 1.0, depth: 0, ray: *ray, prev_p: ray.o, prev_pdf: 1.0, prev_lobe: Lobe::Delta }
+        PathState {
+            beta: Spectrum::ONE,
+            eta: 1.0,
+            depth: 0,
+            ray: *ray,
+            prev_p: ray.o,
+            prev_pdf: 1.0,
+            prev_lobe: Lobe::Delta,
+        }
     }
 }
 
@@ -239,7 +255,9 @@ impl PathTracer {
     /// [`Branches::count`] paths at its first hit.
     pub fn li(&self, scene: &Scene, camera_ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
         let mut result = Spectrum::ZERO;
-        let Some((si, st)) = self.first_hit(scene, camera_ray, &mut result, &mut NoTally) else { return result };
+        let Some((si, st)) = self.first_hit(scene, camera_ray, &mut result, &mut NoTally) else {
+            return result;
+        };
         let n = self.branches.count();
         if n == 1 {
             self.continue_from(scene, &si, st, sampler, &mut result, &mut NoTally);
@@ -255,7 +273,15 @@ impl PathTracer {
     /// `visit(b, light, tally)`. The pilot (`branching.rs`) splits through here too, so that
     /// it measures exactly what the render does.
     #[inline(always)]
-    pub(super) fn for_each_branch<T: Tally + Default>(&self, scene: &Scene, si: &SurfaceInteraction, st: PathState, sampler: &mut PixelSampler, n: u32, mut visit: impl FnMut(usize, Spectrum, T)) {
+    pub(super) fn for_each_branch<T: Tally + Default>(
+        &self,
+        scene: &Scene,
+        si: &SurfaceInteraction,
+        st: PathState,
+        sampler: &mut PixelSampler,
+        n: u32,
+        mut visit: impl FnMut(usize, Spectrum, T),
+    ) {
         for b in 0..n {
             let mut branch = sampler.branch(b, n);
             let (mut l, mut tally) = (Spectrum::ZERO, T::default());
@@ -267,7 +293,13 @@ impl PathTracer {
     /// Traces the camera ray: adds to `result` the light emitted towards the camera by what it
     /// hits, and returns the first hit if the path may continue from there.
     #[inline(always)]
-    pub(super) fn first_hit(&self, scene: &Scene, camera_ray: &Ray, result: &mut Spectrum, tally: &mut impl Tally) -> Option<(SurfaceInteraction, PathState)> {
+    pub(super) fn first_hit(
+        &self,
+        scene: &Scene,
+        camera_ray: &Ray,
+        result: &mut Spectrum,
+        tally: &mut impl Tally,
+    ) -> Option<(SurfaceInteraction, PathState)> {
         if self.max_depth == Some(0) {
             return None;
         }
@@ -278,7 +310,15 @@ impl PathTracer {
     /// Continues a path from its vertex `si` (reached in state `st`) to its end, adding the
     /// light it gathers to `result`.
     #[inline(always)]
-    pub(super) fn continue_from(&self, scene: &Scene, si: &SurfaceInteraction, st: PathState, sampler: &mut PixelSampler, result: &mut Spectrum, tally: &mut impl Tally) {
+    pub(super) fn continue_from(
+        &self,
+        scene: &Scene,
+        si: &SurfaceInteraction,
+        st: PathState,
+        sampler: &mut PixelSampler,
+        result: &mut Spectrum,
+        tally: &mut impl Tally,
+    ) {
         let mut next = self.vertex(scene, si, st, sampler, result, tally);
         while let Some(st) = next {
             let Some(si) = self.arrive(scene, &st, result, tally) else { break };
@@ -290,15 +330,30 @@ impl PathTracer {
     /// weighted by MIS against the BSDF sample that chose the ray, and returns the hit if the
     /// path may continue from it (`max_depth`).
     #[inline(always)]
-    fn arrive(&self, scene: &Scene, st: &PathState, result: &mut Spectrum, tally: &mut impl Tally) -> Option<SurfaceInteraction> {
+    fn arrive(
+        &self,
+        scene: &Scene,
+        st: &PathState,
+        result: &mut Spectrum,
+        tally: &mut impl Tally,
+    ) -> Option<SurfaceInteraction> {
         let show_emitters = st.depth > 0 || self.emitters == EmitterVisibility::Visible;
         tally.ray();
         let Some(si) = scene.intersect(&st.ray) else {
             if let (Some(env), true) = (scene.environment, show_emitters) {
-                let le = scene.emitters[env as usize].radiance(-st.ray.d, Vec3::ZERO, glam::Vec2::ZERO);
+                let le =
+                    scene.emitters[env as usize].radiance(-st.ray.d, Vec3::ZERO, glam::Vec2::ZERO);
                 let w = match st.prev_lobe {
                     Lobe::Delta => 1.0,
-                    Lobe::Smooth => power_heuristic(st.prev_pdf, scene.pdf_emitter_direction(env, st.prev_p, st.ray.d, &SurfacePoint::AT_INFINITY)),
+                    Lobe::Smooth => power_heuristic(
+                        st.prev_pdf,
+                        scene.pdf_emitter_direction(
+                            env,
+                            st.prev_p,
+                            st.ray.d,
+                            &SurfacePoint::AT_INFINITY,
+                        ),
+                    ),
                 };
                 *result += st.beta * le * w;
             }
@@ -310,7 +365,10 @@ impl PathTracer {
             if le != Spectrum::ZERO {
                 let w = match st.prev_lobe {
                     Lobe::Delta => 1.0,
-                    Lobe::Smooth => power_heuristic(st.prev_pdf, scene.pdf_emitter_direction(e, st.prev_p, st.ray.d, &si.surface_point())),
+                    Lobe::Smooth => power_heuristic(
+                        st.prev_pdf,
+                        scene.pdf_emitter_direction(e, st.prev_p, st.ray.d, &si.surface_point()),
+                    ),
                 };
                 *result += st.beta * le * w;
             }
@@ -326,7 +384,15 @@ impl PathTracer {
     /// the throughput so far) to `result`, and returns the path state after sampling the BSDF
     /// and Russian roulette (`None`: the path ends).
     #[inline(always)]
-    fn vertex(&self, scene: &Scene, si: &SurfaceInteraction, mut st: PathState, sampler: &mut PixelSampler, result: &mut Spectrum, tally: &mut impl Tally) -> Option<PathState> {
+    fn vertex(
+        &self,
+        scene: &Scene,
+        si: &SurfaceInteraction,
+        mut st: PathState,
+        sampler: &mut PixelSampler,
+        result: &mut Spectrum,
+        tally: &mut impl Tally,
+    ) -> Option<PathState> {
         let bsdf = scene.bsdf(si);
         let sp = ShadingPoint::new(si);
         let wo = si.to_local(si.wo);

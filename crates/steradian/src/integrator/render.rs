@@ -123,7 +123,10 @@ impl fmt::Display for RenderError {
         match self {
             RenderError::NoSensor => write!(f, "the scene has no sensor to render"),
             RenderError::BadSensor(i) => write!(f, "the scene has no sensor number {i}"),
-            RenderError::NotACamera => write!(f, "irradiance maps need a camera sensor (perspective or thinlens), not a meter"),
+            RenderError::NotACamera => write!(
+                f,
+                "irradiance maps need a camera sensor (perspective or thinlens), not a meter"
+            ),
             RenderError::ThreadPool(e) => write!(f, "could not start worker threads: {e}"),
         }
     }
@@ -147,7 +150,8 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
     }
     let spp = sampler.sample_count;
     let meter = sensor.is_meter();
-    sampler.kind = opts.sampler.unwrap_or(if meter { SamplerKind::Independent } else { sampler.kind });
+    sampler.kind =
+        opts.sampler.unwrap_or(if meter { SamplerKind::Independent } else { sampler.kind });
     if opts.quantity == PixelQuantity::SurfaceIrradiance && meter {
         return Err(RenderError::NotACamera);
     }
@@ -186,7 +190,8 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
     let mut pilot = None;
     let integrator = match &scene.integrator {
         Integrator::Path(p) if p.branches == Branches::Auto => {
-            pilot = pool.install(|| branching::pilot(p, scene, sensor, width, height, spp, &sampler));
+            pilot =
+                pool.install(|| branching::pilot(p, scene, sensor, width, height, spp, &sampler));
             let n = pilot.map_or(DEFAULT_BRANCHES, |p| p.branches);
             Integrator::Path(PathTracer { branches: Branches::Fixed(n), ..p.clone() })
         }
@@ -235,8 +240,12 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
                     let mut s = sampler.pixel_sampler(pixel, width, index);
                     let (mut pos, film_uv) = film_position(pixel, &mut s, width, height);
                     let l = match opts.quantity {
-                        PixelQuantity::Sensor => sensor.measure(scene, &integrator, film_uv, &mut s),
-                        PixelQuantity::SurfaceIrradiance => surface_irradiance(scene, sensor, film_uv, &mut s),
+                        PixelQuantity::Sensor => {
+                            sensor.measure(scene, &integrator, film_uv, &mut s)
+                        }
+                        PixelQuantity::SurfaceIrradiance => {
+                            surface_irradiance(scene, sensor, film_uv, &mut s)
+                        }
                     };
                     if meter {
                         // meters ignore the film position: equal weights
@@ -275,7 +284,8 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
     std::thread::scope(|scope| {
         let (tx, rx) = mpsc::channel::<(usize, ImageBlock)>();
         for _ in 0..pool.current_num_threads() {
-            let (tx, next, merged_items, items, render_item) = (tx.clone(), &next, &merged_items, &items, &render_item);
+            let (tx, next, merged_items, items, render_item) =
+                (tx.clone(), &next, &merged_items, &items, &render_item);
             scope.spawn(move || loop {
                 let i = next.fetch_add(1, Ordering::Relaxed);
                 if i >= items.len() || cancelled() {
@@ -331,13 +341,23 @@ pub fn render(scene: &Scene, opts: &RenderOptions) -> Result<RenderOutput, Rende
 /// pixels (where the film splats it), and the same as a fraction of the film (`film_uv`, what
 /// sensors take). The pilot (`branching.rs`) starts its samples here too.
 #[inline]
-pub(super) fn film_position(pixel: UVec2, s: &mut PixelSampler, width: u32, height: u32) -> (Vec2, Vec2) {
+pub(super) fn film_position(
+    pixel: UVec2,
+    s: &mut PixelSampler,
+    width: u32,
+    height: u32,
+) -> (Vec2, Vec2) {
     let pos = pixel.as_vec2() + s.next_2d();
     (pos, pos / Vec2::new(width as f32, height as f32))
 }
 
 /// Irradiance on the surface seen through film position `film_uv`, on the camera's side.
-fn surface_irradiance(scene: &Scene, sensor: &Sensor, film_uv: Vec2, s: &mut PixelSampler) -> Spectrum {
+fn surface_irradiance(
+    scene: &Scene,
+    sensor: &Sensor,
+    film_uv: Vec2,
+    s: &mut PixelSampler,
+) -> Spectrum {
     let Some(ray): Option<Ray> = sensor.camera_ray(film_uv, s) else { return Spectrum::ZERO };
     let Some(si) = scene.intersect(&ray) else { return Spectrum::ZERO };
     let n = if si.n.dot(ray.d) < 0.0 { si.n } else { -si.n };

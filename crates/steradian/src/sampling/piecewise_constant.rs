@@ -19,7 +19,8 @@ impl PiecewiseConstant1D {
     /// the uniform distribution, so that sampling never fails.
     pub fn new(func: &[f32]) -> Self {
         let n = func.len().max(1);
-        let mut func: Vec<f32> = func.iter().map(|&f| if f > 0.0 && f.is_finite() { f } else { 0.0 }).collect();
+        let mut func: Vec<f32> =
+            func.iter().map(|&f| if f > 0.0 && f.is_finite() { f } else { 0.0 }).collect();
         func.resize(n, 0.0);
         let mut cdf = vec![0f32; n + 1];
         let mut acc = 0f64;
@@ -91,10 +92,19 @@ pub struct PiecewiseConstant2D {
 impl PiecewiseConstant2D {
     /// `func[iu * nv + iv]`: the value of cell (iu, iv).
     pub fn new(func: &[f32], nu: usize, nv: usize) -> Self {
-        assert_eq!(func.len(), nu * nv, "PiecewiseConstant2D: {} values for a {nu}×{nv} grid", func.len());
-        let conditional: Vec<PiecewiseConstant1D> = func.chunks(nv).map(PiecewiseConstant1D::new).collect();
+        assert_eq!(
+            func.len(),
+            nu * nv,
+            "PiecewiseConstant2D: {} values for a {nu}×{nv} grid",
+            func.len()
+        );
+        let conditional: Vec<PiecewiseConstant1D> =
+            func.chunks(nv).map(PiecewiseConstant1D::new).collect();
         // rows that are all zero became uniform: give them zero marginal weight
-        let row_weight: Vec<f32> = func.chunks(nv).map(|row| row.iter().map(|&f| f.max(0.0) as f64).sum::<f64>() as f32 / nv as f32).collect();
+        let row_weight: Vec<f32> = func
+            .chunks(nv)
+            .map(|row| row.iter().map(|&f| f.max(0.0) as f64).sum::<f64>() as f32 / nv as f32)
+            .collect();
         let marginal = PiecewiseConstant1D::new(&row_weight);
         PiecewiseConstant2D { conditional, marginal }
     }
@@ -122,7 +132,9 @@ mod tests {
     fn one_d_density_matches_values_and_integrates_to_one() {
         let d = PiecewiseConstant1D::new(&[1.0, 0.0, 3.0, 4.0]);
         assert!((d.integral() - 2.0).abs() < 1e-6);
-        assert!((d.pdf(0.1) - 0.5).abs() < 1e-6 && d.pdf(0.3) == 0.0 && (d.pdf(0.9) - 2.0).abs() < 1e-6);
+        assert!(
+            (d.pdf(0.1) - 0.5).abs() < 1e-6 && d.pdf(0.3) == 0.0 && (d.pdf(0.9) - 2.0).abs() < 1e-6
+        );
         let mut rng = Pcg32::new(1, 2);
         let mut counts = [0usize; 4];
         let n = 100_000;

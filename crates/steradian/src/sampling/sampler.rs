@@ -54,7 +54,17 @@ impl Sampler {
         let stream = mix64(pixel_id ^ mix64(self.seed.wrapping_add(0x9e37_79b9_7f4a_7c15)));
         let rng = Pcg32::new(mix64((index as u64) ^ (stream << 1)), stream);
         let pixel_seed = stream as u32 ^ (stream >> 32) as u32;
-        let mut s = PixelSampler { rng, kind: self.kind, global: index as u64, pixel_seed, epoch_seed: epoch_seed(pixel_seed, index as u64), block: 0, point: SobolPoint::EMPTY, buf: [0.0; 2], pos: 4 };
+        let mut s = PixelSampler {
+            rng,
+            kind: self.kind,
+            global: index as u64,
+            pixel_seed,
+            epoch_seed: epoch_seed(pixel_seed, index as u64),
+            block: 0,
+            point: SobolPoint::EMPTY,
+            buf: [0.0; 2],
+            pos: 4,
+        };
         if s.kind == SamplerKind::Sobol {
             s.refill();
         }
@@ -96,7 +106,17 @@ pub struct PixelSampler {
 impl PixelSampler {
     /// A stand-alone stream (tests, meters): i.i.d. numbers from `seed` and `stream`.
     pub fn independent(seed: u64, stream: u64) -> Self {
-        PixelSampler { rng: Pcg32::new(mix64(seed), stream), kind: SamplerKind::Independent, global: 0, pixel_seed: 0, epoch_seed: 0, block: 0, point: SobolPoint::EMPTY, buf: [0.0; 2], pos: 4 }
+        PixelSampler {
+            rng: Pcg32::new(mix64(seed), stream),
+            kind: SamplerKind::Independent,
+            global: 0,
+            pixel_seed: 0,
+            epoch_seed: 0,
+            block: 0,
+            point: SobolPoint::EMPTY,
+            buf: [0.0; 2],
+            pos: 4,
+        }
     }
 
     /// Starts the next 4-D block: set 0 of the Sobol sequence (its best-distributed
@@ -206,7 +226,10 @@ mod tests {
             for (k, pts) in pairs.iter().enumerate() {
                 for a in 0..=8 {
                     let (nx, ny) = (1usize << a, 1usize << (8 - a));
-                    assert!(grid(pts, nx, ny).iter().all(|&c| c == 1), "pixel {pixel}: 2-D draw {k}, {nx}×{ny} cells");
+                    assert!(
+                        grid(pts, nx, ny).iter().all(|&c| c == 1),
+                        "pixel {pixel}: 2-D draw {k}, {nx}×{ny} cells"
+                    );
                 }
             }
             assert_ne!(pairs[1], pairs[2], "each block has its own scramble");
@@ -286,9 +309,12 @@ mod tests {
         let sampler = Sampler { kind: SamplerKind::Sobol, sample_count: 1 << 18, seed: 1 };
         let pixel = UVec2::new(2, 3);
         for epoch in [1u32, 3] {
-            let first: Vec<Vec2> = (0..256).map(|i| sampler.pixel_sampler(pixel, 8, (epoch << 16) + i).next_2d()).collect();
+            let first: Vec<Vec2> = (0..256)
+                .map(|i| sampler.pixel_sampler(pixel, 8, (epoch << 16) + i).next_2d())
+                .collect();
             assert!(one_per_cell(&first), "epoch {epoch} is not stratified");
-            let epoch0: Vec<Vec2> = (0..256).map(|i| sampler.pixel_sampler(pixel, 8, i).next_2d()).collect();
+            let epoch0: Vec<Vec2> =
+                (0..256).map(|i| sampler.pixel_sampler(pixel, 8, i).next_2d()).collect();
             assert_ne!(first, epoch0, "epoch {epoch} repeats epoch 0");
         }
         // 16 branches of camera samples 4096..4111: branch indices 65536..65791, epoch 1

@@ -61,14 +61,18 @@ impl SobolPoint {
         let rev = owen_scramble_rev(index.reverse_bits(), hash(seed ^ 0x79c6_8e4a));
         let hi = &t[0][(rev >> 24) as usize];
         let lo = &t[1][((rev >> 16) & 0xff) as usize];
-        SobolPoint { sobol_rev: std::array::from_fn(|d| hi[d] ^ lo[d]), seed: seed.wrapping_mul(0x9c8f_2d3b) }
+        SobolPoint {
+            sobol_rev: std::array::from_fn(|d| hi[d] ^ lo[d]),
+            seed: seed.wrapping_mul(0x9c8f_2d3b),
+        }
     }
 
     /// Dimensions `2·pair` and `2·pair + 1` (`pair` is 0 or 1), in [0, 1).
     #[inline]
     pub fn dims(&self, pair: usize) -> [f32; 2] {
         let (a, b) = (2 * pair, 2 * pair + 1);
-        let scramble = |d: usize| owen_scramble_rev(self.sobol_rev[d], hash(self.seed ^ DIM_SALT[d]));
+        let scramble =
+            |d: usize| owen_scramble_rev(self.sobol_rev[d], hash(self.seed ^ DIM_SALT[d]));
         // un-reversing lanes is cheap in SSE2 (no multiplies); two lanes are left idle
         let v = Int4::from([scramble(a), scramble(b), 0, 0]).reverse_bits().to_f32_norm();
         [v[0], v[1]]
@@ -93,14 +97,22 @@ mod tests {
     fn matches_sobol_burley() {
         for seed in [0u32, 1, 0xdead_beef, u32::MAX] {
             for index in 0..1u32 << 16 {
-                assert_eq!(sample_4d(index, seed), sobol_burley::sample_4d(index, 0, seed), "index {index} seed {seed}");
+                assert_eq!(
+                    sample_4d(index, seed),
+                    sobol_burley::sample_4d(index, 0, seed),
+                    "index {index} seed {seed}"
+                );
             }
         }
         let mut s = 0x1234_5678u32;
         for i in 0..100_000u32 {
             s = hash(s ^ i);
             let index = s & 0xffff;
-            assert_eq!(sample_4d(index, s), sobol_burley::sample_4d(index, 0, s), "index {index} seed {s}");
+            assert_eq!(
+                sample_4d(index, s),
+                sobol_burley::sample_4d(index, 0, s),
+                "index {index} seed {s}"
+            );
         }
     }
 }

@@ -100,7 +100,21 @@ impl SphericalRectangle {
         let g2 = acos(y1 * x0 * r2 * r3);
         let g3 = acos(-x0 * y0 * r3 * r0);
         let k = TAU - g2 - g3;
-        SphericalRectangle { o, x, y, z, x0, x1, y0, y1, z0, b0: -y0 * r0, b1: y1 * r2, k, solid_angle: g0 + g1 - k }
+        SphericalRectangle {
+            o,
+            x,
+            y,
+            z,
+            x0,
+            x1,
+            y0,
+            y1,
+            z0,
+            b0: -y0 * r0,
+            b1: y1 * r2,
+            k,
+            solid_angle: g0 + g1 - k,
+        }
     }
 
     /// The point of the rectangle in direction u ∈ [0, 1)² (density 1/S per steradian).
@@ -128,7 +142,8 @@ impl SphericalRectangle {
         let yv = if hv2 < 1.0 - 1e-6 { (hv * d) / (1.0 - hv2).sqrt() } else { self.y1 };
         let yv = yv.clamp(self.y0, self.y1);
         let p = self.o + xu * self.x + yv * self.y + self.z0 * self.z;
-        let uv = Vec2::new((xu - self.x0) / (self.x1 - self.x0), (yv - self.y0) / (self.y1 - self.y0));
+        let uv =
+            Vec2::new((xu - self.x0) / (self.x1 - self.x0), (yv - self.y0) / (self.y1 - self.y0));
         (p, uv.clamp(Vec2::ZERO, Vec2::ONE))
     }
 }
@@ -148,11 +163,21 @@ mod tests {
     #[test]
     fn solid_angle_matches_the_closed_form() {
         let (c, ex, ey) = rect();
-        for o in [Vec3::ZERO, Vec3::new(0.3, -2.0, 0.4), Vec3::new(5.0, 3.0, -1.0), Vec3::new(0.1, 1.25, -0.2)] {
+        for o in [
+            Vec3::ZERO,
+            Vec3::new(0.3, -2.0, 0.4),
+            Vec3::new(5.0, 3.0, -1.0),
+            Vec3::new(0.1, 1.25, -0.2),
+        ] {
             let sr = SphericalRectangle::new(o, c, ex, ey);
             let v = |p: Vec3| DVec3::new(p.x as f64, p.y as f64, p.z as f64);
-            let expect = radiometry::quad_solid_angle(v(o), v(c), v(c + ex), v(c + ex + ey), v(c + ey));
-            assert!((sr.solid_angle as f64 - expect).abs() <= 1e-4 * expect + 1e-6, "o = {o}: {} vs {expect}", sr.solid_angle);
+            let expect =
+                radiometry::quad_solid_angle(v(o), v(c), v(c + ex), v(c + ex + ey), v(c + ey));
+            assert!(
+                (sr.solid_angle as f64 - expect).abs() <= 1e-4 * expect + 1e-6,
+                "o = {o}: {} vs {expect}",
+                sr.solid_angle
+            );
         }
     }
 
@@ -163,13 +188,23 @@ mod tests {
     fn samples_are_uniform_in_solid_angle() {
         let (a, b, h) = (0.8f32, 1.3f32, 0.6f32);
         // rectangle [0, a] × [0, b] at height h above the origin, facing down
-        let sr = SphericalRectangle::new(Vec3::ZERO, Vec3::new(0.0, 0.0, h), Vec3::new(a, 0.0, 0.0), Vec3::new(0.0, b, 0.0));
+        let sr = SphericalRectangle::new(
+            Vec3::ZERO,
+            Vec3::new(0.0, 0.0, h),
+            Vec3::new(a, 0.0, 0.0),
+            Vec3::new(0.0, b, 0.0),
+        );
         let mut rng = Pcg32::new(3, 1);
         let n = 200_000;
         let (mut s1, mut s2) = (0f64, 0f64);
         for _ in 0..n {
             let p = sr.sample(Vec2::new(rng.next_f32(), rng.next_f32()));
-            assert!((p.z - h).abs() < 1e-5 && (-1e-5..=a + 1e-5).contains(&p.x) && (-1e-5..=b + 1e-5).contains(&p.y), "{p}");
+            assert!(
+                (p.z - h).abs() < 1e-5
+                    && (-1e-5..=a + 1e-5).contains(&p.x)
+                    && (-1e-5..=b + 1e-5).contains(&p.y),
+                "{p}"
+            );
             let v = (p.normalize().z * sr.solid_angle) as f64;
             s1 += v;
             s2 += v * v;
@@ -186,7 +221,8 @@ mod tests {
     #[test]
     fn sub_rectangle_gets_its_share() {
         let o = Vec3::new(0.2, -0.4, 0.0);
-        let (c, ex, ey) = (Vec3::new(-0.5, -0.5, 1.0), Vec3::new(1.5, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
+        let (c, ex, ey) =
+            (Vec3::new(-0.5, -0.5, 1.0), Vec3::new(1.5, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0));
         let sr = SphericalRectangle::new(o, c, ex, ey);
         let sub = SphericalRectangle::new(o, c, ex * 0.5, ey * 0.5);
         let p = (sub.solid_angle / sr.solid_angle) as f64;

@@ -71,7 +71,8 @@ impl SphericalTriangle {
         let (s, t) = (area_hat - self.alpha).sin_cos();
         let uu = t - cos_alpha;
         let v = s + sin_alpha * self.cos_ab;
-        let q = (((v * t - uu * s) * cos_alpha - v) / ((v * s + uu * t) * sin_alpha)).clamp(-1.0, 1.0);
+        let q =
+            (((v * t - uu * s) * cos_alpha - v) / ((v * s + uu * t) * sin_alpha)).clamp(-1.0, 1.0);
         let c_perp = (c - c.dot(a) * a).normalize_or_zero();
         let c_hat = q * a + (1.0 - q * q).max(0.0).sqrt() * c_perp;
         // 2. the point on the arc from B to Ĉ, uniform in solid angle: cos θ (from B) linear in u₂
@@ -114,8 +115,17 @@ mod tests {
         let (p0, p1, p2) = tri();
         for o in [Vec3::ZERO, Vec3::new(0.3, -2.0, 0.4), Vec3::new(5.0, 3.0, -1.0)] {
             let st = SphericalTriangle::new(o, p0, p1, p2).unwrap();
-            let expect = radiometry::triangle_solid_angle(o.as_dvec3(), p0.as_dvec3(), p1.as_dvec3(), p2.as_dvec3());
-            assert!((st.solid_angle() - expect).abs() <= 1e-9 * expect, "{} vs {expect}", st.solid_angle());
+            let expect = radiometry::triangle_solid_angle(
+                o.as_dvec3(),
+                p0.as_dvec3(),
+                p1.as_dvec3(),
+                p2.as_dvec3(),
+            );
+            assert!(
+                (st.solid_angle() - expect).abs() <= 1e-9 * expect,
+                "{} vs {expect}",
+                st.solid_angle()
+            );
         }
         // seen from a vertex: degenerate
         assert!(SphericalTriangle::new(p0, p0, p1, p2).is_none());
@@ -127,7 +137,10 @@ mod tests {
     #[test]
     fn samples_are_uniform_in_solid_angle() {
         let (p0, p1, p2) = tri();
-        for (k, o) in [Vec3::ZERO, Vec3::new(0.1, 0.2, 0.1), Vec3::new(-3.0, 0.5, 2.0)].into_iter().enumerate() {
+        for (k, o) in [Vec3::ZERO, Vec3::new(0.1, 0.2, 0.1), Vec3::new(-3.0, 0.5, 2.0)]
+            .into_iter()
+            .enumerate()
+        {
             let st = SphericalTriangle::new(o, p0, p1, p2).unwrap();
             let (m01, m12, m20) = ((p0 + p1) / 2.0, (p1 + p2) / 2.0, (p2 + p0) / 2.0);
             let subs = [(p0, m01, m20), (m01, p1, m12), (m20, m12, p2), (m01, m12, m20)];
@@ -137,8 +150,12 @@ mod tests {
             for _ in 0..n {
                 let w = st.sample(Vec2::new(rng.next_f32(), rng.next_f32()));
                 assert!((w.length() - 1.0).abs() < 1e-5);
-                let (b1, b2) = barycentrics(o, w, p0, p1, p2).expect("sample misses the triangle's plane");
-                assert!(b1 >= -1e-4 && b2 >= -1e-4 && b1 + b2 <= 1.0 + 1e-4, "({b1}, {b2}) outside the triangle");
+                let (b1, b2) =
+                    barycentrics(o, w, p0, p1, p2).expect("sample misses the triangle's plane");
+                assert!(
+                    b1 >= -1e-4 && b2 >= -1e-4 && b1 + b2 <= 1.0 + 1e-4,
+                    "({b1}, {b2}) outside the triangle"
+                );
                 // which sub-triangle: corners by barycentric thresholds, else the middle one
                 let b0 = 1.0 - b1 - b2;
                 let i = if b0 > 0.5 {
@@ -153,10 +170,18 @@ mod tests {
                 counts[i] += 1;
             }
             for (i, (a, b, c)) in subs.into_iter().enumerate() {
-                let share = radiometry::triangle_solid_angle(o.as_dvec3(), a.as_dvec3(), b.as_dvec3(), c.as_dvec3()) / st.solid_angle();
+                let share = radiometry::triangle_solid_angle(
+                    o.as_dvec3(),
+                    a.as_dvec3(),
+                    b.as_dvec3(),
+                    c.as_dvec3(),
+                ) / st.solid_angle();
                 let f = counts[i] as f64 / n as f64;
                 let se = (share * (1.0 - share) / n as f64).sqrt();
-                assert!((f - share).abs() <= 4.0 * se, "o = {o}, sub-triangle {i}: {f} vs {share} ± {se}");
+                assert!(
+                    (f - share).abs() <= 4.0 * se,
+                    "o = {o}, sub-triangle {i}: {f} vs {share} ± {se}"
+                );
             }
         }
     }
@@ -169,7 +194,13 @@ mod tests {
         let st = SphericalTriangle::new(o, p0, p1, p2).unwrap();
         let dir = |p: Vec3| (p - o).normalize();
         assert!((st.sample(Vec2::new(0.3, 0.0)) - dir(p1)).length() < 1e-5, "u₂ = 0 gives B");
-        assert!((st.sample(Vec2::new(0.0, 1.0)) - dir(p0)).length() < 1e-4, "u₁ = 0, u₂ = 1 gives A");
-        assert!((st.sample(Vec2::new(1.0, 1.0)) - dir(p2)).length() < 1e-4, "u₁ = 1, u₂ = 1 gives C");
+        assert!(
+            (st.sample(Vec2::new(0.0, 1.0)) - dir(p0)).length() < 1e-4,
+            "u₁ = 0, u₂ = 1 gives A"
+        );
+        assert!(
+            (st.sample(Vec2::new(1.0, 1.0)) - dir(p2)).length() < 1e-4,
+            "u₁ = 1, u₂ = 1 gives C"
+        );
     }
 }

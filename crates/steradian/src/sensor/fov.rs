@@ -1,7 +1,7 @@
 //! Field of view as Mitsuba's projective cameras specify it.
 
-use std::fmt;
 use crate::shape::is_positive;
+use std::fmt;
 
 /// Which image axis a given `fov` applies to (`fov_axis`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -109,11 +109,14 @@ mod tests {
     fn axis_conversions() {
         let y = FieldOfView::Angle { degrees: 30.0, axis: FovAxis::Y }.x_fov(200, 100).unwrap();
         assert!(((y / 2.0).tan() - 2.0 * (15f32.to_radians()).tan()).abs() < 1e-5);
-        let s = FieldOfView::Angle { degrees: 30.0, axis: FovAxis::Smaller }.x_fov(200, 100).unwrap();
+        let s =
+            FieldOfView::Angle { degrees: 30.0, axis: FovAxis::Smaller }.x_fov(200, 100).unwrap();
         assert_eq!(s, y);
-        let l = FieldOfView::Angle { degrees: 30.0, axis: FovAxis::Larger }.x_fov(200, 100).unwrap();
+        let l =
+            FieldOfView::Angle { degrees: 30.0, axis: FovAxis::Larger }.x_fov(200, 100).unwrap();
         assert!((l.to_degrees() - 30.0).abs() < 1e-4);
-        let sq = FieldOfView::Angle { degrees: 40.0, axis: FovAxis::Smaller }.x_fov(64, 64).unwrap();
+        let sq =
+            FieldOfView::Angle { degrees: 40.0, axis: FovAxis::Smaller }.x_fov(64, 64).unwrap();
         assert!((sq.to_degrees() - 40.0).abs() < 1e-4);
         assert!(FieldOfView::Angle { degrees: 180.0, axis: FovAxis::X }.x_fov(64, 64).is_err());
     }

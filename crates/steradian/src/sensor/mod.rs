@@ -7,7 +7,7 @@ mod perspective;
 mod radiancemeter;
 mod thinlens;
 
-pub use fov::{FovAxis, FieldOfView};
+pub use fov::{FieldOfView, FovAxis};
 pub use irradiancemeter::IrradianceMeter;
 pub use perspective::Perspective;
 pub use radiancemeter::RadianceMeter;
@@ -65,7 +65,13 @@ impl Sensor {
     /// that position (the next two dimensions of `sampler` choose the aperture point), for
     /// meters their quantity (film position plays no part).
     #[inline]
-    pub fn measure(&self, scene: &Scene, integrator: &Integrator, film_uv: Vec2, sampler: &mut PixelSampler) -> Spectrum {
+    pub fn measure(
+        &self,
+        scene: &Scene,
+        integrator: &Integrator,
+        film_uv: Vec2,
+        sampler: &mut PixelSampler,
+    ) -> Spectrum {
         if let SensorKind::IrradianceMeter(m) = &self.kind {
             let ps = scene.shapes[m.shape as usize].sample_position(sampler.next_2d());
             return estimate_irradiance(scene, integrator, ps.p, ps.n, sampler);
@@ -95,14 +101,18 @@ impl Sensor {
         match &self.kind {
             SensorKind::RadianceMeter(m) => Some(m.ray()),
             SensorKind::IrradianceMeter(_) => None,
-            SensorKind::Perspective(_) | SensorKind::ThinLens(_) => self.camera_ray(film_uv, sampler),
+            SensorKind::Perspective(_) | SensorKind::ThinLens(_) => {
+                self.camera_ray(film_uv, sampler)
+            }
         }
     }
 
     /// What the sensor measures.
     pub fn quantity(&self) -> Quantity {
         match self.kind {
-            SensorKind::Perspective(_) | SensorKind::ThinLens(_) | SensorKind::RadianceMeter(_) => Quantity::Radiance,
+            SensorKind::Perspective(_) | SensorKind::ThinLens(_) | SensorKind::RadianceMeter(_) => {
+                Quantity::Radiance
+            }
             SensorKind::IrradianceMeter(_) => Quantity::Irradiance,
         }
     }

@@ -47,7 +47,13 @@ pub(super) fn validate(to_world: &Transform, near_clip: f32, far_clip: f32) -> R
 
 impl Perspective {
     /// `x_fov` in radians (see [`super::FieldOfView::x_fov`]); `aspect` = width/height.
-    pub fn new(to_world: Transform, x_fov: f32, aspect: f32, near_clip: f32, far_clip: f32) -> Result<Self, String> {
+    pub fn new(
+        to_world: Transform,
+        x_fov: f32,
+        aspect: f32,
+        near_clip: f32,
+        far_clip: f32,
+    ) -> Result<Self, String> {
         validate(&to_world, near_clip, far_clip)?;
         let tx = (x_fov / 2.0).tan();
         Ok(Perspective { to_world, tan_half: Vec2::new(tx, tx / aspect), near_clip, far_clip })

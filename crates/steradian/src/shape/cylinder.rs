@@ -36,14 +36,22 @@ pub struct Cylinder {
 }
 
 impl Cylinder {
-    pub fn new(p0: Vec3, p1: Vec3, radius: f32, to_world: &Transform, flip_normals: bool) -> Result<Cylinder, ShapeError> {
+    pub fn new(
+        p0: Vec3,
+        p1: Vec3,
+        radius: f32,
+        to_world: &Transform,
+        flip_normals: bool,
+    ) -> Result<Cylinder, ShapeError> {
         let d = p1 - p0;
         let len = d.length();
         if !is_positive_finite(len) {
             return Err(ShapeError("cylinder: p0 and p1 must be distinct finite points".into()));
         }
         if !is_positive_finite(radius) {
-            return Err(ShapeError(format!("cylinder: the radius must be positive (got {radius})")));
+            return Err(ShapeError(format!(
+                "cylinder: the radius must be positive (got {radius})"
+            )));
         }
         let f = Frame::from_normal(d / len);
         let m = Mat4::from_translation(p0)

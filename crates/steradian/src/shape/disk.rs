@@ -74,7 +74,8 @@ impl Disk {
     pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
         let (s, c) = (2.0 * PI * hit.uv.y).sin_cos();
         // dp/du points radially outwards (as Mitsuba); at the centre use the local x axis.
-        let dpdu = self.to_world.vector(if hit.uv.x > 0.0 { Vec3::new(c, s, 0.0) } else { Vec3::X });
+        let dpdu =
+            self.to_world.vector(if hit.uv.x > 0.0 { Vec3::new(c, s, 0.0) } else { Vec3::X });
         // v = φ/2π: ∂p/∂v = 2π·r·(−sin φ, cos φ, 0)
         let dpdv = self.to_world.vector(Vec3::new(-s, c, 0.0) * (2.0 * PI * hit.uv.x));
         SurfaceInteraction {
@@ -94,6 +95,11 @@ impl Disk {
     pub fn sample_position(&self, u: Vec2) -> PositionSample {
         let q = warp::square_to_uniform_disk_concentric(u);
         let uv = Vec2::new(q.length(), azimuth01(q.x, q.y));
-        PositionSample { p: self.to_world.point(q.extend(0.0)), n: self.n, uv, pdf_area: 1.0 / self.area }
+        PositionSample {
+            p: self.to_world.point(q.extend(0.0)),
+            n: self.n,
+            uv,
+            pdf_area: 1.0 / self.area,
+        }
     }
 }

@@ -63,11 +63,16 @@ fn obj_errors() {
     let missing = std::env::temp_dir().join("steradian-definitely-missing.obj");
     let e = read_obj(&missing, true).unwrap_err();
     assert!(e.to_string().contains("cannot open"), "{e}");
-    let garbage: Vec<u8> = (0..4096u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
+    let garbage: Vec<u8> =
+        (0..4096u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
     assert!(read_obj(&temp_file("garbage.obj", &garbage), true).is_err());
     assert!(read_obj(&temp_file("empty.obj", b"# nothing\nv 0 0 0\n"), true).is_err());
-    assert!(read_obj(&temp_file("range.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), true).is_err());
-    assert!(read_obj(&temp_file("bad.obj", b"v 0 0 zero\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), true).is_err());
+    assert!(
+        read_obj(&temp_file("range.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), true).is_err()
+    );
+    assert!(
+        read_obj(&temp_file("bad.obj", b"v 0 0 zero\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), true).is_err()
+    );
 }
 
 const TET_ASCII: &str = "ply\nformat ascii 1.0\ncomment test\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n\
@@ -92,10 +97,17 @@ element material 1\nproperty uchar id\n\
 element face 1\nproperty list uchar uint vertex_index\nend_header\n"
     )
     .into_bytes();
-    let f64b = |v: f64| if big_endian { v.to_be_bytes().to_vec() } else { v.to_le_bytes().to_vec() };
-    let f32b = |v: f32| if big_endian { v.to_be_bytes().to_vec() } else { v.to_le_bytes().to_vec() };
-    let u32b = |v: u32| if big_endian { v.to_be_bytes().to_vec() } else { v.to_le_bytes().to_vec() };
-    for (p, uv) in [([0.0, 0.0, 2.0], [0.0, 0.0]), ([3.0, 0.0, 2.0], [1.0, 0.0]), ([0.0, 3.0, 2.0], [0.0, 1.0])] {
+    let f64b =
+        |v: f64| if big_endian { v.to_be_bytes().to_vec() } else { v.to_le_bytes().to_vec() };
+    let f32b =
+        |v: f32| if big_endian { v.to_be_bytes().to_vec() } else { v.to_le_bytes().to_vec() };
+    let u32b =
+        |v: u32| if big_endian { v.to_be_bytes().to_vec() } else { v.to_le_bytes().to_vec() };
+    for (p, uv) in [
+        ([0.0, 0.0, 2.0], [0.0, 0.0]),
+        ([3.0, 0.0, 2.0], [1.0, 0.0]),
+        ([0.0, 3.0, 2.0], [0.0, 1.0]),
+    ] {
         for c in p {
             out.extend(f64b(c));
         }
@@ -118,7 +130,10 @@ element face 1\nproperty list uchar uint vertex_index\nend_header\n"
 fn ply_binary_with_normals_and_uvs() {
     for be in [false, true] {
         let d = read_ply(&temp_file(&format!("b{be}.ply"), &binary_ply(be))).unwrap();
-        assert_eq!(d.positions, vec![Vec3::new(0.0, 0.0, 2.0), Vec3::new(3.0, 0.0, 2.0), Vec3::new(0.0, 3.0, 2.0)]);
+        assert_eq!(
+            d.positions,
+            vec![Vec3::new(0.0, 0.0, 2.0), Vec3::new(3.0, 0.0, 2.0), Vec3::new(0.0, 3.0, 2.0)]
+        );
         assert_eq!(d.normals.as_ref().unwrap(), &vec![Vec3::Z; 3]);
         assert_eq!(d.uvs.as_ref().unwrap()[1], Vec2::new(1.0, 0.0));
         assert_eq!(d.indices, vec![[0, 1, 2]]);
@@ -136,7 +151,8 @@ fn ply_errors_never_panic() {
     for cut in [1usize, 10, 60, full.len() - 40, full.len() - 5, full.len() - 1] {
         assert!(read_ply(&temp_file("trunc.ply", &full[..cut])).is_err(), "cut at {cut}");
     }
-    let garbage: Vec<u8> = (0..4096u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
+    let garbage: Vec<u8> =
+        (0..4096u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
     assert!(read_ply(&temp_file("garbage.ply", &garbage)).is_err());
     let mut g2 = b"ply\nformat binary_little_endian 1.0\nelement vertex 1000000\nproperty float x\nproperty float y\nproperty float z\nelement face 5\nproperty list uchar int vertex_indices\nend_header\n".to_vec();
     g2.extend_from_slice(&garbage);

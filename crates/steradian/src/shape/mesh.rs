@@ -10,7 +10,10 @@
 
 use glam::{Vec2, Vec3};
 
-use super::{area_to_solid_angle, direction_from_position, is_positive_finite, DirectionSample, PositionSample, ShapeError};
+use super::{
+    area_to_solid_angle, direction_from_position, is_positive_finite, DirectionSample,
+    PositionSample, ShapeError,
+};
 use crate::accel::intersect_triangle;
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
 use crate::sampling::spherical_triangle::SphericalTriangle;
@@ -58,7 +61,10 @@ impl Mesh {
     ) -> Result<Mesh, ShapeError> {
         let nv = positions.len();
         if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
-            return Err(ShapeError(format!("mesh vertex {i} has a non-finite position {}", positions[i])));
+            return Err(ShapeError(format!(
+                "mesh vertex {i} has a non-finite position {}",
+                positions[i]
+            )));
         }
         if let Some(n) = &normals {
             if n.len() != nv {
@@ -67,15 +73,24 @@ impl Mesh {
         }
         if let Some(uv) = &uvs {
             if uv.len() != nv {
-                return Err(ShapeError(format!("mesh has {} texture coordinates for {nv} vertices", uv.len())));
+                return Err(ShapeError(format!(
+                    "mesh has {} texture coordinates for {nv} vertices",
+                    uv.len()
+                )));
             }
         }
         for (f, tri) in indices.iter().enumerate() {
             if let Some(&bad) = tri.iter().find(|&&i| i as usize >= nv) {
-                return Err(ShapeError(format!("mesh face {f} refers to vertex {bad}, but there are only {nv} vertices")));
+                return Err(ShapeError(format!(
+                    "mesh face {f} refers to vertex {bad}, but there are only {nv} vertices"
+                )));
             }
         }
-        let positions: Vec<Vec3> = if to_world.is_identity() { positions } else { positions.iter().map(|&p| to_world.point(p)).collect() };
+        let positions: Vec<Vec3> = if to_world.is_identity() {
+            positions
+        } else {
+            positions.iter().map(|&p| to_world.point(p)).collect()
+        };
         if let Some(i) = positions.iter().position(|p| !p.is_finite()) {
             return Err(ShapeError(format!("mesh vertex {i} is not finite after to_world")));
         }
@@ -116,8 +131,21 @@ impl Mesh {
     }
 
     /// [`Mesh::new`] from [`MeshData`].
-    pub fn from_data(data: MeshData, to_world: &Transform, flip_normals: bool, face_normals: bool) -> Result<Mesh, ShapeError> {
-        Mesh::new(data.positions, data.normals, data.uvs, data.indices, to_world, flip_normals, face_normals)
+    pub fn from_data(
+        data: MeshData,
+        to_world: &Transform,
+        flip_normals: bool,
+        face_normals: bool,
+    ) -> Result<Mesh, ShapeError> {
+        Mesh::new(
+            data.positions,
+            data.normals,
+            data.uvs,
+            data.indices,
+            to_world,
+            flip_normals,
+            face_normals,
+        )
     }
 
     #[inline]
@@ -168,7 +196,9 @@ impl Mesh {
         match &self.uvs {
             Some(uvs) => {
                 let [i0, i1, i2] = self.indices[prim as usize];
-                uvs[i0 as usize] * (1.0 - b.x - b.y) + uvs[i1 as usize] * b.x + uvs[i2 as usize] * b.y
+                uvs[i0 as usize] * (1.0 - b.x - b.y)
+                    + uvs[i1 as usize] * b.x
+                    + uvs[i2 as usize] * b.y
             }
             None => b,
         }
@@ -208,7 +238,8 @@ impl Mesh {
         };
         let ns = match &self.normals {
             Some(ns) => {
-                let s = (ns[i0 as usize] * b0 + ns[i1 as usize] * b1 + ns[i2 as usize] * b2).normalize_or_zero();
+                let s = (ns[i0 as usize] * b0 + ns[i1 as usize] * b1 + ns[i2 as usize] * b2)
+                    .normalize_or_zero();
                 if s == Vec3::ZERO {
                     n
                 } else {
@@ -267,14 +298,20 @@ impl Mesh {
         let b = warp::square_to_uniform_triangle(u);
         let [p0, p1, p2] = self.triangle(prim);
         let p = p0 * (1.0 - b.x - b.y) + p1 * b.x + p2 * b.y;
-        PositionSample { p, n: self.face_normal(prim), uv: self.uv_at(prim, b), pdf_area: 1.0 / self.area }
+        PositionSample {
+            p,
+            n: self.face_normal(prim),
+            uv: self.uv_at(prim, b),
+            pdf_area: 1.0 / self.area,
+        }
     }
 
     /// Triangle `prim` as seen from `reference`, when solid-angle sampling applies there.
     #[inline]
     fn spherical(&self, reference: Vec3, prim: u32) -> Option<SphericalTriangle> {
         let [p0, p1, p2] = self.triangle(prim);
-        SphericalTriangle::new(reference, p0, p1, p2).filter(|st| SphericalTriangle::USEFUL.contains(&st.solid_angle()))
+        SphericalTriangle::new(reference, p0, p1, p2)
+            .filter(|st| SphericalTriangle::USEFUL.contains(&st.solid_angle()))
     }
 
     /// A point seen from `reference`: a triangle chosen by area, then a direction uniform in
@@ -300,8 +337,17 @@ impl Mesh {
         let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
         let (q1, q2) = (q.dot(e1), q.dot(e2));
         let det = d11 * d22 - d12 * d12;
-        let b = Vec2::new((q1 * d22 - q2 * d12) / det, (q2 * d11 - q1 * d12) / det).clamp(Vec2::ZERO, Vec2::ONE);
-        Some(DirectionSample { p, n: self.face_normal(prim), uv: self.uv_at(prim, b), wi, dist, pdf, prim })
+        let b = Vec2::new((q1 * d22 - q2 * d12) / det, (q2 * d11 - q1 * d12) / det)
+            .clamp(Vec2::ZERO, Vec2::ONE);
+        Some(DirectionSample {
+            p,
+            n: self.face_normal(prim),
+            uv: self.uv_at(prim, b),
+            wi,
+            dist,
+            pdf,
+            prim,
+        })
     }
 
     /// Density per solid angle of [`Mesh::sample_direction`] for the point `p` (normal `n`) of

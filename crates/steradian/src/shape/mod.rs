@@ -214,12 +214,19 @@ impl Shape {
     /// A point on the surface as seen from `reference`, with its density per solid angle.
     /// `None` when that density would be 0 or not finite. `uv` says whether the caller needs
     /// the point's surface coordinates (a textured emitter does, a uniform one does not).
-    pub fn sample_direction(&self, reference: Vec3, u: Vec2, uv: UvRequest) -> Option<DirectionSample> {
+    pub fn sample_direction(
+        &self,
+        reference: Vec3,
+        u: Vec2,
+        uv: UvRequest,
+    ) -> Option<DirectionSample> {
         match self {
             Shape::Sphere(s) => s.sample_direction(reference, u, uv),
             Shape::Rectangle(s) => s.sample_direction(reference, u),
             Shape::Mesh(s) => s.sample_direction(reference, u),
-            Shape::Disk(_) | Shape::Cylinder(_) => direction_from_position(reference, &self.sample_position(u), 0),
+            Shape::Disk(_) | Shape::Cylinder(_) => {
+                direction_from_position(reference, &self.sample_position(u), 0)
+            }
         }
     }
 
@@ -279,7 +286,11 @@ pub(crate) fn area_to_solid_angle(pdf_area: f32, reference: Vec3, p: Vec3, n: Ve
 }
 
 /// Turns an area sample (on primitive `prim`) into a direction sample seen from `reference`.
-pub(crate) fn direction_from_position(reference: Vec3, ps: &PositionSample, prim: u32) -> Option<DirectionSample> {
+pub(crate) fn direction_from_position(
+    reference: Vec3,
+    ps: &PositionSample,
+    prim: u32,
+) -> Option<DirectionSample> {
     let d = ps.p - reference;
     let dist = d.length();
     if !is_positive_finite(dist) {

@@ -25,16 +25,29 @@ use super::{MeshData, ShapeError};
 
 /// Reads an OBJ file into object-space mesh data.
 pub fn read_obj(path: &Path, flip_tex_coords: bool) -> Result<MeshData, ShapeError> {
-    let file = std::fs::File::open(path).map_err(|e| ShapeError(format!("cannot open OBJ file \"{}\": {e}", path.display())))?;
+    let file = std::fs::File::open(path)
+        .map_err(|e| ShapeError(format!("cannot open OBJ file \"{}\": {e}", path.display())))?;
     let mut reader = BufReader::new(file);
-    let options = tobj::LoadOptions { single_index: true, triangulate: true, ignore_points: true, ignore_lines: true };
+    let options = tobj::LoadOptions {
+        single_index: true,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+    };
     let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
         tobj::load_obj_buf(&mut reader, &options, |_| Err(tobj::LoadError::OpenFileFailed))
     }));
     let (models, _materials) = match result {
         Ok(Ok(r)) => r,
-        Ok(Err(e)) => return Err(ShapeError(format!("cannot parse OBJ file \"{}\": {e}", path.display()))),
-        Err(_) => return Err(ShapeError(format!("cannot parse OBJ file \"{}\": malformed data", path.display()))),
+        Ok(Err(e)) => {
+            return Err(ShapeError(format!("cannot parse OBJ file \"{}\": {e}", path.display())))
+        }
+        Err(_) => {
+            return Err(ShapeError(format!(
+                "cannot parse OBJ file \"{}\": malformed data",
+                path.display()
+            )))
+        }
     };
     let all_normals = models.iter().all(|m| !m.mesh.normals.is_empty());
     let all_uvs = models.iter().all(|m| !m.mesh.texcoords.is_empty());
@@ -48,23 +61,39 @@ pub fn read_obj(path: &Path, flip_tex_coords: bool) -> Result<MeshData, ShapeErr
         data.positions.extend(mesh.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])));
         if all_normals {
             if mesh.normals.len() != 3 * nv {
-                return Err(ShapeError(format!("OBJ file \"{}\": inconsistent normal data", path.display())));
+                return Err(ShapeError(format!(
+                    "OBJ file \"{}\": inconsistent normal data",
+                    path.display()
+                )));
             }
             normals.extend(mesh.normals.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])));
         }
         if all_uvs {
             if mesh.texcoords.len() != 2 * nv {
-                return Err(ShapeError(format!("OBJ file \"{}\": inconsistent texture coordinate data", path.display())));
+                return Err(ShapeError(format!(
+                    "OBJ file \"{}\": inconsistent texture coordinate data",
+                    path.display()
+                )));
             }
-            uvs.extend(mesh.texcoords.chunks_exact(2).map(|c| Vec2::new(c[0], if flip_tex_coords { 1.0 - c[1] } else { c[1] })));
+            uvs.extend(
+                mesh.texcoords
+                    .chunks_exact(2)
+                    .map(|c| Vec2::new(c[0], if flip_tex_coords { 1.0 - c[1] } else { c[1] })),
+            );
         }
         if mesh.indices.len() % 3 != 0 {
-            return Err(ShapeError(format!("OBJ file \"{}\": faces were not triangulated", path.display())));
+            return Err(ShapeError(format!(
+                "OBJ file \"{}\": faces were not triangulated",
+                path.display()
+            )));
         }
         for tri in mesh.indices.chunks_exact(3) {
             let t = [tri[0], tri[1], tri[2]];
             if let Some(&bad) = t.iter().find(|&&i| i as usize >= nv) {
-                return Err(ShapeError(format!("OBJ file \"{}\": face refers to missing vertex {bad}", path.display())));
+                return Err(ShapeError(format!(
+                    "OBJ file \"{}\": face refers to missing vertex {bad}",
+                    path.display()
+                )));
             }
             data.indices.push(t.map(|i| i + base));
         }

@@ -132,10 +132,12 @@ impl PropertyAccess for PlyFace {
 /// Reads a PLY file into object-space mesh data.
 pub fn read_ply(path: &Path) -> Result<MeshData, ShapeError> {
     let err = |msg: String| ShapeError(format!("PLY file \"{}\": {msg}", path.display()));
-    let file = std::fs::File::open(path).map_err(|e| ShapeError(format!("cannot open PLY file \"{}\": {e}", path.display())))?;
+    let file = std::fs::File::open(path)
+        .map_err(|e| ShapeError(format!("cannot open PLY file \"{}\": {e}", path.display())))?;
     let mut reader = BufReader::new(file);
     // ply-rs reports errors as io::Error; guard against panics in the parser all the same.
-    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| read_ply_inner(&mut reader)));
+    let result =
+        std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| read_ply_inner(&mut reader)));
     let data = match result {
         Ok(r) => r.map_err(err)?,
         Err(_) => return Err(err("malformed data".into())),
@@ -144,7 +146,9 @@ pub fn read_ply(path: &Path) -> Result<MeshData, ShapeError> {
 }
 
 fn read_ply_inner(reader: &mut BufReader<std::fs::File>) -> Result<MeshData, String> {
-    let header = Parser::<DefaultElement>::new().read_header(reader).map_err(|e| format!("invalid header: {e}"))?;
+    let header = Parser::<DefaultElement>::new()
+        .read_header(reader)
+        .map_err(|e| format!("invalid header: {e}"))?;
     let vparser = Parser::<PlyVertex>::new();
     let fparser = Parser::<PlyFace>::new();
     let sparser = Parser::<DefaultElement>::new();
@@ -153,11 +157,23 @@ fn read_ply_inner(reader: &mut BufReader<std::fs::File>) -> Result<MeshData, Str
     for (name, def) in &header.elements {
         match name.as_str() {
             "vertex" => {
-                vertices = Some(vparser.read_payload_for_element(reader, def, &header).map_err(|e| format!("cannot read vertices: {e}"))?)
+                vertices = Some(
+                    vparser
+                        .read_payload_for_element(reader, def, &header)
+                        .map_err(|e| format!("cannot read vertices: {e}"))?,
+                )
             }
-            "face" => faces = Some(fparser.read_payload_for_element(reader, def, &header).map_err(|e| format!("cannot read faces: {e}"))?),
+            "face" => {
+                faces = Some(
+                    fparser
+                        .read_payload_for_element(reader, def, &header)
+                        .map_err(|e| format!("cannot read faces: {e}"))?,
+                )
+            }
             _ => {
-                sparser.read_payload_for_element(reader, def, &header).map_err(|e| format!("cannot read element \"{name}\": {e}"))?;
+                sparser
+                    .read_payload_for_element(reader, def, &header)
+                    .map_err(|e| format!("cannot read element \"{name}\": {e}"))?;
             }
         }
     }
@@ -168,8 +184,10 @@ fn read_ply_inner(reader: &mut BufReader<std::fs::File>) -> Result<MeshData, Str
         return Err("vertices need x, y and z properties".into());
     }
     let positions: Vec<Vec3> = vertices.iter().map(|v| Vec3::from(v.p)).collect();
-    let normals = (!vertices.is_empty() && all(0b111_000)).then(|| vertices.iter().map(|v| Vec3::from(v.n)).collect());
-    let uvs = (!vertices.is_empty() && all(0b1100_0000)).then(|| vertices.iter().map(|v| Vec2::from(v.uv)).collect());
+    let normals = (!vertices.is_empty() && all(0b111_000))
+        .then(|| vertices.iter().map(|v| Vec3::from(v.n)).collect());
+    let uvs = (!vertices.is_empty() && all(0b1100_0000))
+        .then(|| vertices.iter().map(|v| Vec2::from(v.uv)).collect());
     let nv = positions.len();
     let mut indices = Vec::with_capacity(faces.len());
     for (f, face) in faces.into_iter().enumerate() {
@@ -179,7 +197,9 @@ fn read_ply_inner(reader: &mut BufReader<std::fs::File>) -> Result<MeshData, Str
             Some(Ok(v)) => v,
         };
         if let Some(&bad) = idx.iter().find(|&&i| i as usize >= nv) {
-            return Err(format!("face {f} refers to vertex {bad}, but there are only {nv} vertices"));
+            return Err(format!(
+                "face {f} refers to vertex {bad}, but there are only {nv} vertices"
+            ));
         }
         for k in 2..idx.len() {
             indices.push([idx[0], idx[k - 1], idx[k]]);

@@ -21,10 +21,10 @@
 
 use glam::{Vec2, Vec3};
 
-use crate::accel::intersect_triangle;
 use super::{direction_from_position, is_positive_finite, DirectionSample, PositionSample};
-use crate::sampling::spherical_rectangle::{RectangleFrame, SphericalRectangle};
+use crate::accel::intersect_triangle;
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
+use crate::sampling::spherical_rectangle::{RectangleFrame, SphericalRectangle};
 
 #[derive(Clone, Debug)]
 pub struct Rectangle {
@@ -55,11 +55,22 @@ impl Rectangle {
         let dpdu = to_world.vector(Vec3::X * 2.0);
         let dpdv = to_world.vector(Vec3::Y * 2.0);
         let corner = to_world.point(Vec3::new(-1.0, -1.0, 0.0));
-        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, y)| to_world.point(Vec3::new(x, y, 0.0)));
+        let corners = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+            .map(|(x, y)| to_world.point(Vec3::new(x, y, 0.0)));
         let perpendicular = dpdu.dot(dpdv).abs() <= 1e-5 * dpdu.length() * dpdv.length();
         let frame = perpendicular.then(|| RectangleFrame::new(corner, dpdu, dpdv));
         let sh_frame = Frame::from_normal_tangent(n, dpdu);
-        Rectangle { to_world: *to_world, n, dpdu, dpdv, sh_frame, area: dpdu.cross(dpdv).length(), frame, centre: to_world.point(Vec3::ZERO), corners }
+        Rectangle {
+            to_world: *to_world,
+            n,
+            dpdu,
+            dpdv,
+            sh_frame,
+            area: dpdu.cross(dpdv).length(),
+            frame,
+            centre: to_world.point(Vec3::ZERO),
+            corners,
+        }
     }
 
     /// World normal of the front side.
@@ -132,7 +143,9 @@ impl Rectangle {
     /// The rectangle as seen from `reference`, when solid-angle sampling applies there.
     fn spherical(&self, reference: Vec3) -> Option<SphericalRectangle> {
         let frame = self.frame.as_ref()?;
-        if self.area <= SOLID_ANGLE_SAMPLING_MIN_APPARENT_SIZE * (self.centre - reference).length_squared() {
+        if self.area
+            <= SOLID_ANGLE_SAMPLING_MIN_APPARENT_SIZE * (self.centre - reference).length_squared()
+        {
             return None;
         }
         let sr = SphericalRectangle::from_frame(reference, frame);

@@ -48,7 +48,12 @@ impl Sphere {
         let object_to_world = to_world.then_after(&local);
         let s = to_world.axis_scales();
         let flip = flip_normals ^ (radius < 0.0) ^ to_world.flips_handedness();
-        Sphere { object_to_world, center: to_world.point(center), radius: r * (s.x + s.y + s.z) / 3.0, flip }
+        Sphere {
+            object_to_world,
+            center: to_world.point(center),
+            radius: r * (s.x + s.y + s.z) / 3.0,
+            flip,
+        }
     }
 
     pub fn center(&self) -> Vec3 {
@@ -85,7 +90,10 @@ impl Sphere {
     #[inline]
     fn uv_of_local(l: Vec3) -> Vec2 {
         let l = l.normalize_or_zero();
-        Vec2::new(azimuth01(l.x, l.y), crate::geometry::trig::acos(l.z) * std::f32::consts::FRAC_1_PI)
+        Vec2::new(
+            azimuth01(l.x, l.y),
+            crate::geometry::trig::acos(l.z) * std::f32::consts::FRAC_1_PI,
+        )
     }
 
     /// Both roots of |o + t·d − c|² = r² for the unit direction d, in increasing order.
@@ -151,7 +159,12 @@ impl Sphere {
     pub fn sample_position(&self, u: Vec2) -> PositionSample {
         let w = warp::square_to_uniform_sphere(u);
         let p = self.center + w * self.radius;
-        PositionSample { p, n: if self.flip { -w } else { w }, uv: self.uv_at(p), pdf_area: 1.0 / self.surface_area() }
+        PositionSample {
+            p,
+            n: if self.flip { -w } else { w },
+            uv: self.uv_at(p),
+            pdf_area: 1.0 / self.surface_area(),
+        }
     }
 
     /// (cos θmax, 1 − cos θmax) of the cone subtended from `reference`, or `None` when the
@@ -178,7 +191,12 @@ impl Sphere {
         self.cone(reference).is_some()
     }
 
-    pub fn sample_direction(&self, reference: Vec3, u: Vec2, uv: super::UvRequest) -> Option<DirectionSample> {
+    pub fn sample_direction(
+        &self,
+        reference: Vec3,
+        u: Vec2,
+        uv: super::UvRequest,
+    ) -> Option<DirectionSample> {
         let Some((cos_max, one_minus, dc)) = self.cone(reference) else {
             return super::direction_from_position(reference, &self.sample_position(u), 0);
         };

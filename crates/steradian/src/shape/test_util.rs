@@ -33,7 +33,14 @@ pub fn trace(shape: &Shape, ray: &Ray) -> Option<(f32, u32)> {
 ///   `pdf_direction`, and tracing `wi` from `reference` hits the shape at `dist` (at the first
 ///   hit when `first_hit` is set: the sampled point is visible from the reference);
 /// - E[1/pdf] over direction samples equals `solid_angle` (within 5 standard errors).
-pub fn check_sampling(shape: &Shape, on_surface: impl Fn(Vec3) -> bool, reference: Vec3, solid_angle: f64, first_hit: bool, seed: u64) {
+pub fn check_sampling(
+    shape: &Shape,
+    on_surface: impl Fn(Vec3) -> bool,
+    reference: Vec3,
+    solid_angle: f64,
+    first_hit: bool,
+    seed: u64,
+) {
     let mut rng = Pcg32::new(seed, 11);
     let area = shape.surface_area() as f64;
     let n = 20_000;
@@ -51,20 +58,34 @@ pub fn check_sampling(shape: &Shape, on_surface: impl Fn(Vec3) -> bool, referenc
     let n = 40_000;
     let (mut sum, mut sum2) = (0.0f64, 0.0f64);
     for _ in 0..n {
-        let Some(ds) = shape.sample_direction(reference, u2(&mut rng), super::UvRequest::Compute) else { continue };
+        let Some(ds) = shape.sample_direction(reference, u2(&mut rng), super::UvRequest::Compute)
+        else {
+            continue;
+        };
         assert!(ds.pdf > 0.0 && ds.pdf.is_finite());
         assert!((ds.wi.length() - 1.0).abs() < 1e-4);
         let scale = 1.0 + ds.p.abs().max_element().max(reference.abs().max_element());
-        assert!(close(reference + ds.wi * ds.dist, ds.p, 2e-4 * scale), "{} vs {}", reference + ds.wi * ds.dist, ds.p);
+        assert!(
+            close(reference + ds.wi * ds.dist, ds.p, 2e-4 * scale),
+            "{} vs {}",
+            reference + ds.wi * ds.dist,
+            ds.p
+        );
         assert!(on_surface(ds.p), "direction-sampled point {} is not on the surface", ds.p);
-        let pdf = shape.pdf_direction(reference, &super::SurfacePoint { p: ds.p, n: ds.n, prim: ds.prim });
+        let pdf = shape
+            .pdf_direction(reference, &super::SurfacePoint { p: ds.p, n: ds.n, prim: ds.prim });
         assert!((pdf - ds.pdf).abs() <= 1e-3 * ds.pdf, "pdf {} vs pdf_direction {}", ds.pdf, pdf);
         // brute-force visibility of the sampled point (skip grazing directions)
         if ds.wi.dot(ds.n).abs() > 1e-2 {
             let ray = Ray::new(reference, ds.wi, ds.dist * (1.0 + 1e-3) + 1e-4);
-            let (t, _) = trace(shape, &ray).unwrap_or_else(|| panic!("direction {} does not hit the shape", ds.wi));
+            let (t, _) = trace(shape, &ray)
+                .unwrap_or_else(|| panic!("direction {} does not hit the shape", ds.wi));
             if first_hit {
-                assert!((t - ds.dist).abs() <= 1e-3 * ds.dist + 1e-4, "hit at {t}, sampled at {}", ds.dist);
+                assert!(
+                    (t - ds.dist).abs() <= 1e-3 * ds.dist + 1e-4,
+                    "hit at {t}, sampled at {}",
+                    ds.dist
+                );
             } else {
                 assert!(t <= ds.dist * (1.0 + 1e-3) + 1e-4);
             }

@@ -59,9 +59,15 @@ fn rectangle_intersections() {
     let si = hit(&s, &Ray::infinite(Vec3::new(0.0, -3.0, 0.0), Vec3::Y)).unwrap();
     assert!((si.t - 3.0).abs() < 1e-6 && close(si.n, -Vec3::Y, 1e-6));
     // shear/non-uniform: normal via the inverse transpose stays perpendicular to the plane
-    let m = Transform::from_row_major(&[1.0, 0.0, 0.7, 0.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0]).unwrap();
+    let m = Transform::from_row_major(&[
+        1.0, 0.0, 0.7, 0.0, 0.0, 1.0, 0.0, 0.0, 0.3, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0,
+    ])
+    .unwrap();
     let s = Rectangle::new(&m, false);
-    assert!(s.normal().dot(m.vector(Vec3::X)).abs() < 1e-6 && s.normal().dot(m.vector(Vec3::Y)).abs() < 1e-6);
+    assert!(
+        s.normal().dot(m.vector(Vec3::X)).abs() < 1e-6
+            && s.normal().dot(m.vector(Vec3::Y)).abs() < 1e-6
+    );
 }
 
 #[test]
@@ -71,7 +77,9 @@ fn rectangle_sampling() {
     let m = sc(Vec3::new(a as f32, b as f32, 1.0)).then(&tr(Vec3::new(0.3, -0.2, 0.0)));
     let s = Shape::Rectangle(Rectangle::new(&m, false));
     let omega = |h: f64| 4.0 * (a * b / ((a * a + h * h) * (b * b + h * h)).sqrt()).asin();
-    let on = |p: Vec3| p.z.abs() < 1e-5 && (p.x - 0.3).abs() <= 2.0 + 1e-5 && (p.y + 0.2).abs() <= 1.0 + 1e-5;
+    let on = |p: Vec3| {
+        p.z.abs() < 1e-5 && (p.x - 0.3).abs() <= 2.0 + 1e-5 && (p.y + 0.2).abs() <= 1.0 + 1e-5
+    };
     // near (area/d² = 3.6: spherical-rectangle sampling)
     check_sampling(&s, on, Vec3::new(0.3, -0.2, h as f32), omega(h), true, 1);
     // seen from below the front side: same solid angle (|cos|)
@@ -99,7 +107,11 @@ fn disk_intersections() {
     assert!(hit(&s, &Ray::infinite(Vec3::new(1.5, 1.5, 5.0), -Vec3::Z)).is_none());
     assert!(hit(&s, &Ray::new(Vec3::new(1.0, 1.0, 5.0), -Vec3::Z, 3.9)).is_none());
     let f = Shape::Disk(Disk::new(&m, true));
-    assert!(close(hit(&f, &Ray::infinite(Vec3::new(1.0, 1.0, 5.0), -Vec3::Z)).unwrap().n, -Vec3::Z, 1e-6));
+    assert!(close(
+        hit(&f, &Ray::infinite(Vec3::new(1.0, 1.0, 5.0), -Vec3::Z)).unwrap().n,
+        -Vec3::Z,
+        1e-6
+    ));
 }
 
 #[test]
@@ -118,7 +130,9 @@ fn disk_sampling() {
 fn sphere_intersections() {
     let s = Shape::Sphere(Sphere::new(Vec3::new(1.0, 0.0, 0.0), 2.0, &tr(Vec3::Z), false));
     if let Shape::Sphere(sp) = &s {
-        assert!(close(sp.center(), Vec3::new(1.0, 0.0, 1.0), 1e-6) && (sp.radius() - 2.0).abs() < 1e-6);
+        assert!(
+            close(sp.center(), Vec3::new(1.0, 0.0, 1.0), 1e-6) && (sp.radius() - 2.0).abs() < 1e-6
+        );
     }
     let r = Ray::infinite(Vec3::new(1.0, 0.0, -5.0), Vec3::Z);
     let si = hit(&s, &r).unwrap();
@@ -126,7 +140,7 @@ fn sphere_intersections() {
     assert!(close(si.p, Vec3::new(1.0, 0.0, -1.0), 1e-5));
     assert!(close(si.n, -Vec3::Z, 1e-5));
     assert!((si.uv.y - 1.0).abs() < 1e-4, "{}", si.uv); // south pole: θ = π
-    // equator hit: local point (0, 1, 0) → φ = π/2, θ = π/2
+                                                        // equator hit: local point (0, 1, 0) → φ = π/2, θ = π/2
     let si = hit(&s, &Ray::infinite(Vec3::new(1.0, 5.0, 1.0), -Vec3::Y)).unwrap();
     assert!((si.t - 3.0).abs() < 1e-5 && close(si.n, Vec3::Y, 1e-5));
     assert!((si.uv - Vec2::new(0.25, 0.5)).length() < 1e-5, "{}", si.uv);
@@ -150,7 +164,11 @@ fn sphere_intersections() {
     let f = Shape::Sphere(Sphere::new(Vec3::new(1.0, 0.0, 0.0), 2.0, &tr(Vec3::Z), true));
     assert!(close(hit(&f, &r).unwrap().n, Vec3::Z, 1e-5));
     let neg = Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0, &sc(Vec3::new(-1.0, 1.0, 1.0)), false));
-    assert!(close(hit(&neg, &Ray::infinite(Vec3::new(0.0, 0.0, -5.0), Vec3::Z)).unwrap().n, Vec3::Z, 1e-5));
+    assert!(close(
+        hit(&neg, &Ray::infinite(Vec3::new(0.0, 0.0, -5.0), Vec3::Z)).unwrap().n,
+        Vec3::Z,
+        1e-5
+    ));
     // to_world applies after centre and radius: centre (1,0,0) scaled by 2 → (2,0,0), radius 2
     let s2 = Sphere::new(Vec3::X, 1.0, &sc(Vec3::splat(2.0)), false);
     assert!(close(s2.center(), Vec3::new(2.0, 0.0, 0.0), 1e-6) && (s2.radius() - 2.0).abs() < 1e-6);
@@ -159,7 +177,8 @@ fn sphere_intersections() {
 #[test]
 fn sphere_far_and_grazing_rays_are_accurate() {
     // A small sphere far away: the stable quadratic keeps the hit on the surface.
-    let s = Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, 1000.0), 0.01, &Transform::IDENTITY, false));
+    let s =
+        Shape::Sphere(Sphere::new(Vec3::new(0.0, 0.0, 1000.0), 0.01, &Transform::IDENTITY, false));
     let si = hit(&s, &Ray::infinite(Vec3::ZERO, Vec3::Z)).unwrap();
     assert!((si.t - 999.99).abs() < 1e-3, "{}", si.t);
     let d = Vec3::new(0.0099, 0.0, 1000.0).normalize();
@@ -175,11 +194,22 @@ fn sphere_far_and_grazing_rays_are_accurate() {
 #[test]
 fn sphere_rays_from_the_surface_in_single_precision() {
     let mut rng = crate::sampling::Pcg32::new(11, 5);
-    for (c, r) in [(Vec3::new(0.0, 0.0, 1000.0), 5.0f32), (Vec3::new(0.3, -0.2, 0.1), 1.0), (Vec3::new(-50.0, 20.0, 400.0), 3.0), (Vec3::new(0.0, -1000.0, 0.0), 999.0)] {
+    for (c, r) in [
+        (Vec3::new(0.0, 0.0, 1000.0), 5.0f32),
+        (Vec3::new(0.3, -0.2, 0.1), 1.0),
+        (Vec3::new(-50.0, 20.0, 400.0), 3.0),
+        (Vec3::new(0.0, -1000.0, 0.0), 999.0),
+    ] {
         let s = Shape::Sphere(Sphere::new(c, r, &Transform::IDENTITY, false));
         for _ in 0..2000 {
-            let n = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
-            let d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(rng.next_f32(), rng.next_f32()));
+            let n = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(
+                rng.next_f32(),
+                rng.next_f32(),
+            ));
+            let d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(
+                rng.next_f32(),
+                rng.next_f32(),
+            ));
             let p = c + n * r;
             let cos = d.dot(n);
             if cos.abs() < 0.05 {
@@ -187,7 +217,9 @@ fn sphere_rays_from_the_surface_in_single_precision() {
             }
             let ray = Ray::infinite(offset_ray_origin(p, n, d), d);
             match hit(&s, &ray) {
-                Some(si) if cos > 0.0 => panic!("r = {r}: self-hit at t = {} leaving the surface", si.t),
+                Some(si) if cos > 0.0 => {
+                    panic!("r = {r}: self-hit at t = {} leaving the surface", si.t)
+                }
                 None if cos < 0.0 => panic!("r = {r}: no far side going in"),
                 Some(si) => {
                     // the far root from the ray's actual origin, in double precision
@@ -195,7 +227,11 @@ fn sphere_rays_from_the_surface_in_single_precision() {
                     let oc = o - c;
                     let b = oc.dot(d);
                     let far = -b + (b * b - oc.dot(oc) + (r as f64).powi(2)).sqrt();
-                    assert!((si.t as f64 - far).abs() <= 1e-5 * (1.0 + far + c.abs().max_element()), "r = {r}: t {} vs {far}", si.t);
+                    assert!(
+                        (si.t as f64 - far).abs() <= 1e-5 * (1.0 + far + c.abs().max_element()),
+                        "r = {r}: t {} vs {far}",
+                        si.t
+                    );
                 }
                 None => {}
             }
@@ -240,11 +276,18 @@ fn sphere_cone_samples_stay_on_the_surface_at_the_silhouette() {
         let uy = if i % 2 == 0 { rng.next_f32() } else { 1.0 - 1e-3 * rng.next_f32() };
         let u = Vec2::new(rng.next_f32(), uy.min(1.0 - f32::EPSILON));
         let ds = s.sample_direction(reference, u, UvRequest::Skip).expect("outside the sphere");
-        assert!(((ds.p - c).length() - r).abs() < 1e-6, "off the sphere by {}", (ds.p - c).length() - r);
+        assert!(
+            ((ds.p - c).length() - r).abs() < 1e-6,
+            "off the sphere by {}",
+            (ds.p - c).length() - r
+        );
         assert!((ds.wi.length() - 1.0).abs() < 1e-6);
         let along = reference + ds.wi * ds.dist;
         assert!((along - ds.p).length() < 2e-3 * r, "{} from the point", (along - ds.p).length());
-        assert!(close(ds.n, (ds.p - c) / r, 1e-5) && ds.n.dot(ds.wi) <= 1e-4, "the sampled side faces the reference");
+        assert!(
+            close(ds.n, (ds.p - c) / r, 1e-5) && ds.n.dot(ds.wi) <= 1e-4,
+            "the sampled side faces the reference"
+        );
         // the distance of the intended sample, in double precision
         let dc = (c.as_dvec3() - reference.as_dvec3()).length();
         let (r64, uy64) = (r as f64, u.y as f64);
@@ -261,11 +304,22 @@ fn sphere_cone_samples_stay_on_the_surface_at_the_silhouette() {
 
 #[test]
 fn cylinder_intersections() {
-    let s = Shape::Cylinder(Cylinder::new(Vec3::ZERO, Vec3::Z, 1.0, &Transform::IDENTITY, false).unwrap());
+    let s = Shape::Cylinder(
+        Cylinder::new(Vec3::ZERO, Vec3::Z, 1.0, &Transform::IDENTITY, false).unwrap(),
+    );
     assert!((s.surface_area() - 2.0 * std::f32::consts::PI).abs() < 1e-5);
     let si = hit(&s, &Ray::infinite(Vec3::new(3.0, 0.0, 0.5), -Vec3::X)).unwrap();
-    assert!((si.t - 2.0).abs() < 1e-5 && close(si.p, Vec3::new(1.0, 0.0, 0.5), 1e-5) && close(si.n, Vec3::X, 1e-5));
-    assert!((si.uv - Vec2::new(0.0, 0.5)).length() < 1e-5 || (si.uv - Vec2::new(1.0, 0.5)).length() < 1e-5, "{}", si.uv);
+    assert!(
+        (si.t - 2.0).abs() < 1e-5
+            && close(si.p, Vec3::new(1.0, 0.0, 0.5), 1e-5)
+            && close(si.n, Vec3::X, 1e-5)
+    );
+    assert!(
+        (si.uv - Vec2::new(0.0, 0.5)).length() < 1e-5
+            || (si.uv - Vec2::new(1.0, 0.5)).length() < 1e-5,
+        "{}",
+        si.uv
+    );
     assert_frame(&si);
     // from inside: the wall ahead, normal still outward
     let si = hit(&s, &Ray::infinite(Vec3::new(0.0, 0.0, 0.5), Vec3::Y)).unwrap();
@@ -275,17 +329,33 @@ fn cylinder_intersections() {
     assert!(hit(&s, &Ray::infinite(Vec3::new(3.0, 0.0, 1.5), -Vec3::X)).is_none());
     let d = Vec3::new(-4.0, 0.0, -1.0).normalize();
     let si = hit(&s, &Ray::infinite(Vec3::new(3.0, 0.0, 1.6), d)).unwrap();
-    assert!((si.t - 17f32.sqrt()).abs() < 1e-4 && close(si.p, Vec3::new(-1.0, 0.0, 0.6), 1e-4) && close(si.n, -Vec3::X, 1e-4));
+    assert!(
+        (si.t - 17f32.sqrt()).abs() < 1e-4
+            && close(si.p, Vec3::new(-1.0, 0.0, 0.6), 1e-4)
+            && close(si.n, -Vec3::X, 1e-4)
+    );
     // along the axis: miss; t_max
     assert!(hit(&s, &Ray::infinite(Vec3::new(0.0, 0.0, -1.0), Vec3::Z)).is_none());
     assert!(hit(&s, &Ray::new(Vec3::new(3.0, 0.0, 0.5), -Vec3::X, 1.9)).is_none());
     // flip_normals
-    let f = Shape::Cylinder(Cylinder::new(Vec3::ZERO, Vec3::Z, 1.0, &Transform::IDENTITY, true).unwrap());
-    assert!(close(hit(&f, &Ray::infinite(Vec3::new(3.0, 0.0, 0.5), -Vec3::X)).unwrap().n, -Vec3::X, 1e-5));
+    let f = Shape::Cylinder(
+        Cylinder::new(Vec3::ZERO, Vec3::Z, 1.0, &Transform::IDENTITY, true).unwrap(),
+    );
+    assert!(close(
+        hit(&f, &Ray::infinite(Vec3::new(3.0, 0.0, 0.5), -Vec3::X)).unwrap().n,
+        -Vec3::X,
+        1e-5
+    ));
     // p0/p1/radius and to_world: axis along x from 0 to 2, radius 0.5, moved by (0, 1, 0)
-    let s = Shape::Cylinder(Cylinder::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), 0.5, &tr(Vec3::Y), false).unwrap());
+    let s = Shape::Cylinder(
+        Cylinder::new(Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), 0.5, &tr(Vec3::Y), false).unwrap(),
+    );
     let si = hit(&s, &Ray::infinite(Vec3::new(1.0, 1.0, 3.0), -Vec3::Z)).unwrap();
-    assert!((si.t - 2.5).abs() < 1e-5 && close(si.p, Vec3::new(1.0, 1.0, 0.5), 1e-5) && close(si.n, Vec3::Z, 1e-5));
+    assert!(
+        (si.t - 2.5).abs() < 1e-5
+            && close(si.p, Vec3::new(1.0, 1.0, 0.5), 1e-5)
+            && close(si.n, Vec3::Z, 1e-5)
+    );
     assert!((si.uv.y - 0.5).abs() < 1e-5);
     assert!(hit(&s, &Ray::infinite(Vec3::new(2.1, 1.0, 3.0), -Vec3::Z)).is_none());
     assert!((s.surface_area() - 2.0 * std::f32::consts::PI).abs() < 1e-5);
@@ -297,8 +367,18 @@ fn cylinder_sampling() {
     // radius r, length 2L, reference at the centre of the axis:
     // Ω = 4π L / √(L² + r²)
     let (r, l) = (0.8f64, 1.1f64);
-    let s = Shape::Cylinder(Cylinder::new(Vec3::ZERO, Vec3::new(0.0, 0.0, 2.0 * l as f32), r as f32, &Transform::IDENTITY, false).unwrap());
-    let on = |p: Vec3| (p.truncate().length() - 0.8).abs() < 1e-4 && p.z >= -1e-5 && p.z <= 2.2 + 1e-5;
+    let s = Shape::Cylinder(
+        Cylinder::new(
+            Vec3::ZERO,
+            Vec3::new(0.0, 0.0, 2.0 * l as f32),
+            r as f32,
+            &Transform::IDENTITY,
+            false,
+        )
+        .unwrap(),
+    );
+    let on =
+        |p: Vec3| (p.truncate().length() - 0.8).abs() < 1e-4 && p.z >= -1e-5 && p.z <= 2.2 + 1e-5;
     let omega = 4.0 * PI64 * l / (l * l + r * r).sqrt();
     check_sampling(&s, on, Vec3::new(0.0, 0.0, l as f32), omega, true, 8);
 }
@@ -322,7 +402,11 @@ fn triangle_mesh(to_world: &Transform) -> Mesh {
 fn mesh_intersections() {
     let m = Shape::Mesh(triangle_mesh(&tr(Vec3::new(0.0, 0.0, 1.0))));
     let si = hit(&m, &Ray::infinite(Vec3::new(0.5, 1.0, 4.0), -Vec3::Z)).unwrap();
-    assert!((si.t - 3.0).abs() < 1e-6 && close(si.p, Vec3::new(0.5, 1.0, 1.0), 1e-6) && close(si.n, Vec3::Z, 1e-6));
+    assert!(
+        (si.t - 3.0).abs() < 1e-6
+            && close(si.p, Vec3::new(0.5, 1.0, 1.0), 1e-6)
+            && close(si.n, Vec3::Z, 1e-6)
+    );
     assert!((si.uv - Vec2::new(0.25, 0.5)).length() < 1e-6);
     assert!(close(si.sh_frame.s, Vec3::X, 1e-6)); // dp/du from the uvs
     assert!(hit(&m, &Ray::infinite(Vec3::new(1.5, 1.5, 4.0), -Vec3::Z)).is_none());
@@ -331,7 +415,14 @@ fn mesh_intersections() {
     let c = Shape::Mesh(cube(&sc(Vec3::splat(0.5)), false));
     assert_eq!(c.prim_count(), 12);
     assert!((c.surface_area() - 6.0).abs() < 1e-5);
-    for (o, n) in [(Vec3::Z, Vec3::Z), (-Vec3::Z, -Vec3::Z), (Vec3::X, Vec3::X), (-Vec3::X, -Vec3::X), (Vec3::Y, Vec3::Y), (-Vec3::Y, -Vec3::Y)] {
+    for (o, n) in [
+        (Vec3::Z, Vec3::Z),
+        (-Vec3::Z, -Vec3::Z),
+        (Vec3::X, Vec3::X),
+        (-Vec3::X, -Vec3::X),
+        (Vec3::Y, Vec3::Y),
+        (-Vec3::Y, -Vec3::Y),
+    ] {
         let r = Ray::infinite(o * 3.0 + (Vec3::ONE - n.abs()) * 0.1, -o);
         let si = hit(&c, &r).unwrap();
         assert!((si.t - 2.5).abs() < 1e-5, "{}", si.t);
@@ -349,12 +440,24 @@ fn mesh_intersections() {
     let c = Shape::Mesh(cube(&rot, false));
     let si = hit(&c, &Ray::infinite(Vec3::new(5.0, 0.0, 0.0), -Vec3::X)).unwrap();
     assert!((si.t - (5.0 - 2f32.sqrt())).abs() < 1e-4);
-    assert!(close(si.n, Vec3::new(1.0, 1.0, 0.0).normalize(), 1e-4) || close(si.n, Vec3::new(1.0, -1.0, 0.0).normalize(), 1e-4));
+    assert!(
+        close(si.n, Vec3::new(1.0, 1.0, 0.0).normalize(), 1e-4)
+            || close(si.n, Vec3::new(1.0, -1.0, 0.0).normalize(), 1e-4)
+    );
 }
 
 #[test]
 fn mesh_without_uvs_uses_barycentrics() {
-    let m = Mesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::Y], None, None, vec![[0, 1, 2]], &Transform::IDENTITY, false, true).unwrap();
+    let m = Mesh::new(
+        vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+        None,
+        None,
+        vec![[0, 1, 2]],
+        &Transform::IDENTITY,
+        false,
+        true,
+    )
+    .unwrap();
     let s = Shape::Mesh(m);
     let si = hit(&s, &Ray::infinite(Vec3::new(0.2, 0.3, 1.0), -Vec3::Z)).unwrap();
     assert!((si.uv - Vec2::new(0.2, 0.3)).length() < 1e-6);
@@ -367,7 +470,8 @@ fn smooth_normals_are_angle_weighted() {
     // (Area weighting or plain averaging would give (−1, 0, 1)/√2.)
     let pos = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z, Vec3::new(0.0, 1.0, 1.0)];
     let idx = vec![[0, 1, 2], [0, 3, 4]];
-    let m = Mesh::new(pos.clone(), None, None, idx.clone(), &Transform::IDENTITY, false, false).unwrap();
+    let m = Mesh::new(pos.clone(), None, None, idx.clone(), &Transform::IDENTITY, false, false)
+        .unwrap();
     let n0 = m.normals.as_ref().unwrap()[0];
     assert!(close(n0, Vec3::new(-1.0, 0.0, 2.0).normalize(), 1e-5), "{n0}");
     // interpolated at a hit near vertex 0 on face 0
@@ -376,11 +480,14 @@ fn smooth_normals_are_angle_weighted() {
     let si = hit(&s, &r).unwrap();
     assert!(close(si.sh_frame.n, n0, 1e-3) && close(si.n, Vec3::Z, 1e-6));
     // flat shading
-    let flat = Shape::Mesh(Mesh::new(pos.clone(), None, None, idx.clone(), &Transform::IDENTITY, false, true).unwrap());
+    let flat = Shape::Mesh(
+        Mesh::new(pos.clone(), None, None, idx.clone(), &Transform::IDENTITY, false, true).unwrap(),
+    );
     let si = hit(&flat, &r).unwrap();
     assert!(close(si.sh_frame.n, Vec3::Z, 1e-6));
     // flip_normals flips both
-    let fl = Shape::Mesh(Mesh::new(pos, None, None, idx, &Transform::IDENTITY, true, false).unwrap());
+    let fl =
+        Shape::Mesh(Mesh::new(pos, None, None, idx, &Transform::IDENTITY, true, false).unwrap());
     let si = hit(&fl, &r).unwrap();
     assert!(close(si.sh_frame.n, -n0, 1e-3) && close(si.n, -Vec3::Z, 1e-6));
     // octahedron: by symmetry the vertex normals are the vertex directions
@@ -404,9 +511,28 @@ fn smooth_normals_are_angle_weighted() {
 #[test]
 fn mesh_validation_and_degenerate_triangles() {
     let id = Transform::IDENTITY;
-    assert!(Mesh::new(vec![Vec3::ZERO, Vec3::X], None, None, vec![[0, 1, 2]], &id, false, false).is_err());
-    assert!(Mesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::new(f32::NAN, 0.0, 0.0)], None, None, vec![[0, 1, 2]], &id, false, false).is_err());
-    assert!(Mesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::Y], Some(vec![Vec3::Z]), None, vec![[0, 1, 2]], &id, false, false).is_err());
+    assert!(Mesh::new(vec![Vec3::ZERO, Vec3::X], None, None, vec![[0, 1, 2]], &id, false, false)
+        .is_err());
+    assert!(Mesh::new(
+        vec![Vec3::ZERO, Vec3::X, Vec3::new(f32::NAN, 0.0, 0.0)],
+        None,
+        None,
+        vec![[0, 1, 2]],
+        &id,
+        false,
+        false
+    )
+    .is_err());
+    assert!(Mesh::new(
+        vec![Vec3::ZERO, Vec3::X, Vec3::Y],
+        Some(vec![Vec3::Z]),
+        None,
+        vec![[0, 1, 2]],
+        &id,
+        false,
+        false
+    )
+    .is_err());
     // degenerate triangles (first, middle, last) are never sampled
     let pos = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(2.0, 0.0, 0.0)];
     let idx = vec![[0, 1, 3], [0, 1, 2], [1, 1, 1], [0, 2, 1], [2, 2, 0]];
@@ -415,16 +541,37 @@ fn mesh_validation_and_degenerate_triangles() {
     assert!(m.normals.as_ref().unwrap().iter().all(|n| n.is_finite()));
     let mut rng = crate::sampling::Pcg32::new(1, 2);
     for i in 0..10_000 {
-        let u = if i < 4 { Vec2::new([0.0, 0.5, 0.999_999_9, 1.0 - f32::EPSILON][i], 0.3) } else { super::test_util::u2(&mut rng) };
+        let u = if i < 4 {
+            Vec2::new([0.0, 0.5, 0.999_999_9, 1.0 - f32::EPSILON][i], 0.3)
+        } else {
+            super::test_util::u2(&mut rng)
+        };
         let ps = m.sample_position(u);
-        assert!(ps.p.is_finite() && ps.n.is_finite() && (ps.n.length() - 1.0).abs() < 1e-5, "{ps:?}");
+        assert!(
+            ps.p.is_finite() && ps.n.is_finite() && (ps.n.length() - 1.0).abs() < 1e-5,
+            "{ps:?}"
+        );
         assert!(ps.p.z == 0.0 && ps.p.x + ps.p.y <= 1.0 + 1e-6 && ps.p.x >= 0.0 && ps.p.y >= 0.0);
     }
     // a mesh with no area cannot be sampled
-    let z = Shape::Mesh(Mesh::new(vec![Vec3::ZERO, Vec3::X, Vec3::X], None, None, vec![[0, 1, 2]], &id, false, false).unwrap());
+    let z = Shape::Mesh(
+        Mesh::new(
+            vec![Vec3::ZERO, Vec3::X, Vec3::X],
+            None,
+            None,
+            vec![[0, 1, 2]],
+            &id,
+            false,
+            false,
+        )
+        .unwrap(),
+    );
     assert_eq!(z.surface_area(), 0.0);
     assert!(z.sample_direction(Vec3::Z, Vec2::splat(0.5), super::UvRequest::Compute).is_none());
-    assert_eq!(z.pdf_direction(Vec3::Z, &super::SurfacePoint { p: Vec3::ZERO, n: Vec3::Z, prim: 0 }), 0.0);
+    assert_eq!(
+        z.pdf_direction(Vec3::Z, &super::SurfacePoint { p: Vec3::ZERO, n: Vec3::Z, prim: 0 }),
+        0.0
+    );
 }
 
 #[test]
@@ -432,7 +579,8 @@ fn mesh_sampling() {
     // one triangle: Ω from the Van Oosterom–Strackee formula
     let m = Shape::Mesh(triangle_mesh(&Transform::IDENTITY));
     let solid_angle = |refp: Vec3| {
-        let [a, b, c] = [Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0)].map(|v| (v - refp).as_dvec3());
+        let [a, b, c] = [Vec3::ZERO, Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 2.0, 0.0)]
+            .map(|v| (v - refp).as_dvec3());
         let (la, lb, lc) = (a.length(), b.length(), c.length());
         let num = a.dot(b.cross(c)).abs();
         let den = la * lb * lc + a.dot(b) * lc + a.dot(c) * lb + b.dot(c) * la;
@@ -446,12 +594,17 @@ fn mesh_sampling() {
     let on = |p: Vec3| p.z.abs() < 1e-6 && p.x >= -1e-6 && p.y >= -1e-6 && p.x + p.y <= 2.0 + 1e-5;
     // near (spherical-triangle sampling, density 1/Ω: the estimate of Ω has no variance) and
     // far (Ω < 3·10⁻⁴ sr: area sampling)
-    for (k, refp) in [Vec3::new(0.3, 0.4, 1.2), Vec3::new(-0.5, 0.2, -0.8), Vec3::new(40.0, 70.0, 150.0)].into_iter().enumerate() {
+    for (k, refp) in
+        [Vec3::new(0.3, 0.4, 1.2), Vec3::new(-0.5, 0.2, -0.8), Vec3::new(40.0, 70.0, 150.0)]
+            .into_iter()
+            .enumerate()
+    {
         check_sampling(&m, on, refp, solid_angle(refp), true, 9 + 20 * k as u64);
     }
     assert!(solid_angle(Vec3::new(40.0, 70.0, 150.0)) < 3e-4);
     // a cube from inside: 4π; uneven triangle sizes exercise the area CDF
-    let t = sc(Vec3::new(1.0, 2.0, 0.5)).then(&Transform::rotate(Vec3::new(1.0, 1.0, 0.0), 30.0).unwrap());
+    let t = sc(Vec3::new(1.0, 2.0, 0.5))
+        .then(&Transform::rotate(Vec3::new(1.0, 1.0, 0.0), 30.0).unwrap());
     let c = Shape::Mesh(cube(&t, false));
     let inv = t.inverse();
     let on = |p: Vec3| {

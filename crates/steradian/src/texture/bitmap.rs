@@ -54,7 +54,10 @@ impl UvTransform {
     /// The 2-D part of a 4×4 transform: rows/columns x and y, translation from column w.
     pub fn from_mat4(m: &glam::Mat4) -> Self {
         UvTransform {
-            m: Mat2::from_cols(Vec2::new(m.x_axis.x, m.x_axis.y), Vec2::new(m.y_axis.x, m.y_axis.y)),
+            m: Mat2::from_cols(
+                Vec2::new(m.x_axis.x, m.x_axis.y),
+                Vec2::new(m.y_axis.x, m.y_axis.y),
+            ),
             t: Vec2::new(m.w_axis.x, m.w_axis.y),
         }
     }
@@ -106,9 +109,20 @@ impl fmt::Debug for Bitmap {
 
 impl Bitmap {
     /// A texture from decoded pixels; `raw` keeps sRGB-encoded values as they are.
-    pub fn new(name: &str, image: LoadedImage, raw: bool, filter: FilterType, wrap: WrapMode, to_uv: UvTransform) -> Result<Bitmap, String> {
+    pub fn new(
+        name: &str,
+        image: LoadedImage,
+        raw: bool,
+        filter: FilterType,
+        wrap: WrapMode,
+        to_uv: UvTransform,
+    ) -> Result<Bitmap, String> {
         let LoadedImage { width, height, channels, mut data, format } = image;
-        if width == 0 || height == 0 || !(channels == 1 || channels == 3) || data.len() != width * height * channels {
+        if width == 0
+            || height == 0
+            || !(channels == 1 || channels == 3)
+            || data.len() != width * height * channels
+        {
             return Err(format!("image \"{name}\" has no pixels or an unsupported layout"));
         }
         if format.is_srgb() && !raw {
@@ -128,7 +142,18 @@ impl Bitmap {
         }
         let mean = Spectrum::new((sum[0] / n) as f32, (sum[1] / n) as f32, (sum[2] / n) as f32);
         let max = data.iter().copied().fold(f32::NEG_INFINITY, f32::max);
-        Ok(Bitmap { name: name.to_string(), width, height, channels, data: data.into(), filter, wrap, to_uv, mean, max })
+        Ok(Bitmap {
+            name: name.to_string(),
+            width,
+            height,
+            channels,
+            data: data.into(),
+            filter,
+            wrap,
+            to_uv,
+            mean,
+            max,
+        })
     }
 
     /// (width, height) in texels.
@@ -174,7 +199,12 @@ impl Bitmap {
         let y = uv.y * self.height as f32 - 0.5;
         let (x0, y0) = (x.floor(), y.floor());
         let (xi, yi) = (x0 as i64, y0 as i64);
-        let t = [self.texel(xi, yi), self.texel(xi + 1, yi), self.texel(xi, yi + 1), self.texel(xi + 1, yi + 1)];
+        let t = [
+            self.texel(xi, yi),
+            self.texel(xi + 1, yi),
+            self.texel(xi, yi + 1),
+            self.texel(xi + 1, yi + 1),
+        ];
         (t, Vec2::new(x - x0, y - y0))
     }
 
@@ -183,9 +213,10 @@ impl Bitmap {
     pub fn eval(&self, uv: Vec2) -> Spectrum {
         let uv = self.to_uv.apply(uv);
         match self.filter {
-            FilterType::Nearest => {
-                self.texel((uv.x * self.width as f32).floor() as i64, (uv.y * self.height as f32).floor() as i64)
-            }
+            FilterType::Nearest => self.texel(
+                (uv.x * self.width as f32).floor() as i64,
+                (uv.y * self.height as f32).floor() as i64,
+            ),
             FilterType::Bilinear => {
                 let ([f00, f10, f01, f11], w) = self.bilinear_texels(uv);
                 let a = f00 * (1.0 - w.x) + f10 * w.x;
@@ -250,7 +281,15 @@ mod tests {
         // green at (0.9, 0.1), blue at (0.1, 0.9)
         let data = vec![1., 0., 0., 0., 1., 0., 0., 0., 1., 1., 1., 1.];
         let img = LoadedImage { width: 2, height: 2, channels: 3, data, format: ImageFormat::Exr };
-        let b = Bitmap::new("t", img, false, FilterType::Nearest, WrapMode::Repeat, UvTransform::IDENTITY).unwrap();
+        let b = Bitmap::new(
+            "t",
+            img,
+            false,
+            FilterType::Nearest,
+            WrapMode::Repeat,
+            UvTransform::IDENTITY,
+        )
+        .unwrap();
         assert_eq!(b.eval(Vec2::new(0.1, 0.1)), Spectrum::X);
         assert_eq!(b.eval(Vec2::new(0.9, 0.1)), Spectrum::Y);
         assert_eq!(b.eval(Vec2::new(0.1, 0.9)), Spectrum::Z);
@@ -290,7 +329,10 @@ mod tests {
     fn gradient_matches_finite_differences() {
         let data: Vec<f32> = (0..35).map(|i| ((i * 7919) % 13) as f32 / 13.0).collect();
         let mut b = grey(7, 5, data, FilterType::Bilinear, WrapMode::Repeat);
-        b.to_uv = UvTransform { m: Mat2::from_cols(Vec2::new(1.5, 0.3), Vec2::new(-0.4, 2.0)), t: Vec2::new(0.2, -0.1) };
+        b.to_uv = UvTransform {
+            m: Mat2::from_cols(Vec2::new(1.5, 0.3), Vec2::new(-0.4, 2.0)),
+            t: Vec2::new(0.2, -0.1),
+        };
         let h = 1e-3;
         for uv in [Vec2::new(0.31, 0.47), Vec2::new(0.77, 0.12), Vec2::new(-1.3, 2.2)] {
             let g = b.eval_1_grad(uv);
@@ -298,17 +340,42 @@ mod tests {
                 (b.eval_1(uv + Vec2::new(h, 0.0)) - b.eval_1(uv - Vec2::new(h, 0.0))) / (2.0 * h),
                 (b.eval_1(uv + Vec2::new(0.0, h)) - b.eval_1(uv - Vec2::new(0.0, h))) / (2.0 * h),
             );
-            assert!((g - fd).abs().max_element() < 2e-2 * (1.0 + fd.abs().max_element()), "{uv}: {g} vs {fd}");
+            assert!(
+                (g - fd).abs().max_element() < 2e-2 * (1.0 + fd.abs().max_element()),
+                "{uv}: {g} vs {fd}"
+            );
         }
     }
 
     #[test]
     fn srgb_decoding_unless_raw() {
-        let img = LoadedImage { width: 1, height: 1, channels: 1, data: vec![200.0 / 255.0], format: ImageFormat::Png };
-        let b = Bitmap::new("t", img.clone(), false, FilterType::Nearest, WrapMode::Repeat, UvTransform::IDENTITY).unwrap();
+        let img = LoadedImage {
+            width: 1,
+            height: 1,
+            channels: 1,
+            data: vec![200.0 / 255.0],
+            format: ImageFormat::Png,
+        };
+        let b = Bitmap::new(
+            "t",
+            img.clone(),
+            false,
+            FilterType::Nearest,
+            WrapMode::Repeat,
+            UvTransform::IDENTITY,
+        )
+        .unwrap();
         // Mitsuba 3.9.1 gives 0.577581 for an sRGB 200/255
         assert!((b.eval_1(Vec2::ZERO) - 0.577581).abs() < 1e-5);
-        let raw = Bitmap::new("t", img, true, FilterType::Nearest, WrapMode::Repeat, UvTransform::IDENTITY).unwrap();
+        let raw = Bitmap::new(
+            "t",
+            img,
+            true,
+            FilterType::Nearest,
+            WrapMode::Repeat,
+            UvTransform::IDENTITY,
+        )
+        .unwrap();
         assert!((raw.eval_1(Vec2::ZERO) - 200.0 / 255.0).abs() < 1e-7);
     }
 }

@@ -65,17 +65,38 @@ mod tests {
 
     #[test]
     fn pattern_matches_mitsuba() {
-        let c = Checkerboard::new(Spectrum::splat(0.4).into(), Spectrum::splat(0.2).into(), UvTransform::IDENTITY);
+        let c = Checkerboard::new(
+            Spectrum::splat(0.4).into(),
+            Spectrum::splat(0.2).into(),
+            UvTransform::IDENTITY,
+        );
         // values printed by Mitsuba 3.9.1 (scalar_rgb) for the default checkerboard
-        for (uv, v) in [([0.1, 0.1], 0.4), ([0.6, 0.1], 0.2), ([0.1, 0.6], 0.2), ([0.6, 0.6], 0.4), ([1.1, 0.1], 0.4), ([-0.1, 0.1], 0.2)] {
+        for (uv, v) in [
+            ([0.1, 0.1], 0.4),
+            ([0.6, 0.1], 0.2),
+            ([0.1, 0.6], 0.2),
+            ([0.6, 0.6], 0.4),
+            ([1.1, 0.1], 0.4),
+            ([-0.1, 0.1], 0.2),
+        ] {
             assert_eq!(c.eval(Vec2::from(uv)), Spectrum::splat(v), "{uv:?}");
         }
-        let s = Checkerboard { to_uv: UvTransform { m: glam::Mat2::from_diagonal(Vec2::splat(4.0)), t: Vec2::ZERO }, ..c.clone() };
+        let s = Checkerboard {
+            to_uv: UvTransform { m: glam::Mat2::from_diagonal(Vec2::splat(4.0)), t: Vec2::ZERO },
+            ..c.clone()
+        };
         assert_eq!(s.eval(Vec2::new(0.2, 0.1)), Spectrum::splat(0.2));
         // Mitsuba's eval_1 quirk: 0.2 at (0.1, 0.1) where eval gives 0.4
         assert_eq!(c.eval_1(Vec2::new(0.1, 0.1)), 0.2);
-        let red = Checkerboard::new(Spectrum::X.into(), Spectrum::splat(0.2).into(), UvTransform::IDENTITY);
+        let red = Checkerboard::new(
+            Spectrum::X.into(),
+            Spectrum::splat(0.2).into(),
+            UvTransform::IDENTITY,
+        );
         assert!((red.eval_1(Vec2::new(0.3, 0.6)) - 1.0 / 3.0).abs() < 1e-6);
-        assert!((Texture::Checkerboard(red).mean() - Spectrum::new(0.6, 0.1, 0.1)).abs().max_element() < 1e-6);
+        assert!(
+            (Texture::Checkerboard(red).mean() - Spectrum::new(0.6, 0.1, 0.1)).abs().max_element()
+                < 1e-6
+        );
     }
 }

@@ -52,7 +52,13 @@ pub fn read_image(path: &Path) -> Result<LoadedImage, String> {
         read_jpeg(path).map_err(err)
     } else if magic.starts_with(&[0x76, 0x2F, 0x31, 0x01]) {
         let img = crate::film::read_exr(path)?;
-        Ok(LoadedImage { width: img.width as usize, height: img.height as usize, channels: 3, data: img.data, format: ImageFormat::Exr })
+        Ok(LoadedImage {
+            width: img.width as usize,
+            height: img.height as usize,
+            channels: 3,
+            data: img.data,
+            format: ImageFormat::Exr,
+        })
     } else {
         Err(err("not a PNG, JPEG or OpenEXR file (steradian reads these three formats)".into()))
     }
@@ -75,9 +81,10 @@ fn read_png(path: &Path) -> Result<LoadedImage, String> {
         png::ColorType::Indexed => return Err("palette image was not expanded".into()),
     };
     let values: Vec<f32> = match info.bit_depth {
-        png::BitDepth::Sixteen => {
-            buf[..info.buffer_size()].chunks_exact(2).map(|b| u16::from_be_bytes([b[0], b[1]]) as f32 / 65535.0).collect()
-        }
+        png::BitDepth::Sixteen => buf[..info.buffer_size()]
+            .chunks_exact(2)
+            .map(|b| u16::from_be_bytes([b[0], b[1]]) as f32 / 65535.0)
+            .collect(),
         _ => buf[..info.buffer_size()].iter().map(|&b| b as f32 / 255.0).collect(),
     };
     Ok(drop_alpha(width, height, stored, values, ImageFormat::Png))
@@ -91,9 +98,17 @@ fn read_jpeg(path: &Path) -> Result<LoadedImage, String> {
     let (width, height) = (info.width as usize, info.height as usize);
     let (channels, values): (usize, Vec<f32>) = match info.pixel_format {
         jpeg_decoder::PixelFormat::L8 => (1, pixels.iter().map(|&b| b as f32 / 255.0).collect()),
-        jpeg_decoder::PixelFormat::L16 => (1, pixels.chunks_exact(2).map(|b| u16::from_be_bytes([b[0], b[1]]) as f32 / 65535.0).collect()),
+        jpeg_decoder::PixelFormat::L16 => (
+            1,
+            pixels
+                .chunks_exact(2)
+                .map(|b| u16::from_be_bytes([b[0], b[1]]) as f32 / 65535.0)
+                .collect(),
+        ),
         jpeg_decoder::PixelFormat::RGB24 => (3, pixels.iter().map(|&b| b as f32 / 255.0).collect()),
-        jpeg_decoder::PixelFormat::CMYK32 => return Err("CMYK JPEG images are not supported".into()),
+        jpeg_decoder::PixelFormat::CMYK32 => {
+            return Err("CMYK JPEG images are not supported".into())
+        }
     };
     if values.len() != width * height * channels {
         return Err(format!("decoded {} values for a {width}×{height} image", values.len()));
@@ -102,9 +117,19 @@ fn read_jpeg(path: &Path) -> Result<LoadedImage, String> {
 }
 
 /// Keeps the colour channels of interleaved pixels with `stored` channels (1 to 4).
-fn drop_alpha(width: usize, height: usize, stored: usize, values: Vec<f32>, format: ImageFormat) -> LoadedImage {
+fn drop_alpha(
+    width: usize,
+    height: usize,
+    stored: usize,
+    values: Vec<f32>,
+    format: ImageFormat,
+) -> LoadedImage {
     let channels = if stored >= 3 { 3 } else { 1 };
-    let data = if stored == channels { values } else { values.chunks_exact(stored).flat_map(|p| p[..channels].to_vec()).collect() };
+    let data = if stored == channels {
+        values
+    } else {
+        values.chunks_exact(stored).flat_map(|p| p[..channels].to_vec()).collect()
+    };
     LoadedImage { width, height, channels, data, format }
 }
 
@@ -118,7 +143,14 @@ mod tests {
         dir.join(name)
     }
 
-    fn write_png(path: &Path, w: u32, h: u32, color: png::ColorType, depth: png::BitDepth, data: &[u8]) {
+    fn write_png(
+        path: &Path,
+        w: u32,
+        h: u32,
+        color: png::ColorType,
+        depth: png::BitDepth,
+        data: &[u8],
+    ) {
         let file = File::create(path).unwrap();
         let mut enc = png::Encoder::new(std::io::BufWriter::new(file), w, h);
         enc.set_color(color);
@@ -129,12 +161,26 @@ mod tests {
     #[test]
     fn png_variants_and_alpha() {
         let p = tmp("rgba.png");
-        write_png(&p, 2, 1, png::ColorType::Rgba, png::BitDepth::Eight, &[255, 0, 51, 7, 0, 102, 0, 255]);
+        write_png(
+            &p,
+            2,
+            1,
+            png::ColorType::Rgba,
+            png::BitDepth::Eight,
+            &[255, 0, 51, 7, 0, 102, 0, 255],
+        );
         let img = read_image(&p).unwrap();
         assert_eq!((img.width, img.height, img.channels, img.format), (2, 1, 3, ImageFormat::Png));
         assert_eq!(img.data, vec![1.0, 0.0, 0.2, 0.0, 0.4, 0.0]);
         let p = tmp("grey16.png");
-        write_png(&p, 1, 2, png::ColorType::Grayscale, png::BitDepth::Sixteen, &[0xFF, 0xFF, 0x80, 0x00]);
+        write_png(
+            &p,
+            1,
+            2,
+            png::ColorType::Grayscale,
+            png::BitDepth::Sixteen,
+            &[0xFF, 0xFF, 0x80, 0x00],
+        );
         let img = read_image(&p).unwrap();
         assert_eq!((img.channels, img.data.len()), (1, 2));
         assert!((img.data[1] - 32768.0 / 65535.0).abs() < 1e-7 && img.data[0] == 1.0);

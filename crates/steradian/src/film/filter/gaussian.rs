@@ -48,12 +48,7 @@ impl GaussianFilter {
         check_radius("gaussian", "4·stddev", radius)?;
         let alpha = 1.0 / (2.0 * stddev * stddev);
         let bias = (-alpha * radius * radius).exp();
-        Ok(GaussianFilter {
-            stddev,
-            radius,
-            alpha,
-            bias,
-        })
+        Ok(GaussianFilter { stddev, radius, alpha, bias })
     }
 
     /// Standard deviation σ in pixels.
@@ -99,7 +94,10 @@ fn exp_neg(y: f32) -> f32 {
     let n = shifted - ROUND;
     let f = (z - n) * std::f32::consts::LN_2;
     // e^f, Horner form
-    let p = 1.0 + f * (1.0 + f * (0.5 + f * (1.0 / 6.0 + f * (1.0 / 24.0 + f * (1.0 / 120.0 + f * (1.0 / 720.0))))));
+    let p = 1.0
+        + f * (1.0
+            + f * (0.5
+                + f * (1.0 / 6.0 + f * (1.0 / 24.0 + f * (1.0 / 120.0 + f * (1.0 / 720.0))))));
     // n as an integer, read from the mantissa of `shifted` (integer operations only, so that
     // loops over taps vectorise; a float-to-int `as` cast saturates and does not);
     // n ≥ −116 keeps 2ⁿ a normal number

@@ -76,9 +76,15 @@ impl ReconstructionFilter {
     pub fn eval_in_place(&self, xs: &mut [f32]) {
         let r = self.radius();
         match self {
-            ReconstructionFilter::Box(f) => xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval(*x) } else { 0.0 }),
-            ReconstructionFilter::Tent(f) => xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval(*x) } else { 0.0 }),
-            ReconstructionFilter::Gaussian(f) => xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval_inside(*x) } else { 0.0 }),
+            ReconstructionFilter::Box(f) => {
+                xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval(*x) } else { 0.0 })
+            }
+            ReconstructionFilter::Tent(f) => {
+                xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval(*x) } else { 0.0 })
+            }
+            ReconstructionFilter::Gaussian(f) => {
+                xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval_inside(*x) } else { 0.0 })
+            }
         }
     }
 
@@ -218,22 +224,10 @@ mod tests {
 
     #[test]
     fn border_sizes() {
-        assert_eq!(
-            ReconstructionFilter::from(BoxFilter::new()).border_size(),
-            0
-        );
-        assert_eq!(
-            ReconstructionFilter::from(TentFilter::default()).border_size(),
-            1
-        );
+        assert_eq!(ReconstructionFilter::from(BoxFilter::new()).border_size(), 0);
+        assert_eq!(ReconstructionFilter::from(TentFilter::default()).border_size(), 1);
         assert_eq!(ReconstructionFilter::default().border_size(), 2);
-        assert_eq!(
-            ReconstructionFilter::from(TentFilter::new(1.5).unwrap()).border_size(),
-            1
-        );
-        assert_eq!(
-            ReconstructionFilter::from(TentFilter::new(1.2).unwrap()).border_size(),
-            1
-        );
+        assert_eq!(ReconstructionFilter::from(TentFilter::new(1.5).unwrap()).border_size(), 1);
+        assert_eq!(ReconstructionFilter::from(TentFilter::new(1.2).unwrap()).border_size(), 1);
     }
 }

@@ -29,10 +29,7 @@ impl TentFilter {
     /// oversized radius.
     pub fn new(radius: f32) -> Result<Self, String> {
         check_radius("tent", "radius", radius)?;
-        Ok(TentFilter {
-            radius,
-            inv_radius: 1.0 / radius,
-        })
+        Ok(TentFilter { radius, inv_radius: 1.0 / radius })
     }
 
     /// Filter radius in pixels.

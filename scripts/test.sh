@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Runs every test of the project: the Rust workspace, then the Python package's pytest suite
-# against a fresh `pip install .` in a virtual environment (.venv-test/, made when missing).
+# Runs every check of the project: formatting, clippy and rustdoc (warnings are errors), the Rust
+# workspace's tests, then the Python package's pytest suite against a fresh `pip install .` in a
+# virtual environment (.venv-test/, made when missing).
 # Needs only a Rust toolchain (rustup) and Python >= 3.9 with venv; PyPI for maturin, numpy,
 # pytest and mypy. This is the README's test command and what .ci/run runs.
 set -euo pipefail
@@ -11,6 +12,18 @@ if ! command -v cargo >/dev/null 2>&1; then
 fi
 PYTHON="${PYTHON:-python3}"
 VENV=.venv-test
+
+# rustup's default profile has rustfmt and clippy; a minimal one does not
+if ! cargo fmt --version >/dev/null 2>&1 || ! cargo clippy --version >/dev/null 2>&1; then
+    rustup component add rustfmt clippy
+fi
+
+echo "== cargo fmt --all --check"
+cargo fmt --all --check
+echo "== cargo clippy --workspace --all-targets --locked -- -D warnings"
+cargo clippy --workspace --all-targets --locked -- -D warnings
+echo "== cargo doc --workspace --no-deps --locked (warnings are errors)"
+RUSTDOCFLAGS="-D warnings" cargo doc --workspace --no-deps --locked
 
 echo "== cargo test --workspace --locked"
 cargo test --workspace --locked

@@ -3,7 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use steradian::integrator::{measure, RenderOptions};
+use steradian::render::{measure, RenderOptions};
 
 use crate::render::{parse_defines, CliError};
 
@@ -30,15 +30,13 @@ pub struct MeasureArgs {
 
 pub fn run(args: MeasureArgs) -> Result<(), CliError> {
     let defines = parse_defines(&args.defines)?;
+    RenderOptions { spp: args.spp, threads: args.threads, ..Default::default() }.validate()?;
     let scene = steradian_mitsuba::load_file(&args.scene, &defines)?;
     let sensor = match &args.sensor {
-        Some(id) => scene.find_sensor(id)?,
+        Some(id) => scene.scene.find_sensor(id)?,
         None => 0,
     };
-    if args.spp == Some(0) {
-        return Err("--spp must be at least 1".into());
-    }
-    let s = scene.sensors.get(sensor).ok_or("the scene has no sensor")?;
+    let s = scene.scene.sensors.get(sensor).ok_or("the scene has no sensor")?;
     let m = measure(
         &scene,
         &RenderOptions {
@@ -48,8 +46,7 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
             threads: args.threads,
             ..Default::default()
         },
-    )
-    .map_err(|e| e.to_string())?;
+    )?;
     let (quantity, unit, mean, se) = (m.quantity, m.unit(), m.value, m.stderr);
     let id = if s.id.is_empty() { format!("#{sensor}") } else { s.id.clone() };
     if args.json {

@@ -9,7 +9,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use steradian::film::false_color_png;
 use steradian::film::{write_exr, write_png};
-use steradian::integrator::{render, PixelQuantity, Progress, RenderOptions};
+use steradian::render::{render, PixelQuantity, Progress, RenderError, RenderOptions};
 use steradian::sampling::SamplerKind;
 
 /// The built-in scene, rendered when no scene file is given.
@@ -101,6 +101,18 @@ impl From<String> for CliError {
     }
 }
 
+/// The library's render errors, with options named as the command line spells them.
+impl From<RenderError> for CliError {
+    fn from(e: RenderError) -> Self {
+        match e {
+            RenderError::BadOption { option, reason } => {
+                CliError::Other(format!("--{option} {reason}"))
+            }
+            e => CliError::Other(e.to_string()),
+        }
+    }
+}
+
 impl From<&str> for CliError {
     fn from(m: &str) -> Self {
         CliError::Other(m.to_string())
@@ -120,12 +132,7 @@ pub fn parse_defines(defines: &[String]) -> Result<Vec<(String, String)>, String
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
     // Check the arguments before the (possibly slow) scene load.
     let defines = parse_defines(&args.defines)?;
-    if args.spp == Some(0) {
-        return Err("--spp must be at least 1".into());
-    }
-    if args.threads == Some(0) {
-        return Err("--threads must be at least 1".into());
-    }
+    RenderOptions { spp: args.spp, threads: args.threads, ..Default::default() }.validate()?;
     let output = match (&args.output, &args.scene) {
         (Some(o), _) => o.clone(),
         (None, Some(path)) => path.with_extension("exr"),
@@ -146,7 +153,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         )?,
     };
     let sensor = match &args.sensor {
-        Some(id) => Some(scene.find_sensor(id)?),
+        Some(id) => Some(scene.scene.find_sensor(id)?),
         None => None,
     };
 
@@ -195,18 +202,14 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         progress: Some(&progress),
         quantity: match args.quantity {
             Quantity::Radiance => PixelQuantity::Sensor,
-            Quantity::Irradiance | Quantity::Illuminance => PixelQuantity::SurfaceIrradiance,
+            Quantity::Irradiance => PixelQuantity::SurfaceIrradiance,
+            Quantity::Illuminance => PixelQuantity::SurfaceIlluminance,
         },
     };
-    let out = render(&scene, &opts).map_err(|e| e.to_string())?;
+    let out = render(&scene, &opts)?;
     bar.finish_and_clear();
 
-    let mut image = out.film.develop();
-    let mut error = out.film.develop_stderr();
-    if args.quantity == Quantity::Illuminance {
-        image = image.to_illuminance();
-        error = error.to_illuminance();
-    }
+    let (image, error) = (out.image(), out.stderr_image());
     write_exr(&output, &image)?;
     let png = output.with_extension("png");
     match args.quantity {

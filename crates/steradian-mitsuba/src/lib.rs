@@ -52,13 +52,13 @@ mod registry;
 
 use std::path::Path;
 
-use steradian::scene::Scene;
+use steradian::render::Job;
 
 pub use registry::build_scene;
 
-/// Loads a Mitsuba 3 XML scene file into a renderable scene. `defines` override the file's
+/// Loads a Mitsuba 3 XML scene file: its scene and integrator. `defines` override the file's
 /// `<default>`s (`-D name=value`).
-pub fn load_file(path: &Path, defines: &[(String, String)]) -> Result<Scene, LoadError> {
+pub fn load_file(path: &Path, defines: &[(String, String)]) -> Result<Job, LoadError> {
     let tree = parse_file(path, defines)?;
     let base = path.parent().unwrap_or(Path::new("."));
     build_scene(&tree, base)
@@ -71,7 +71,7 @@ pub fn load_string(
     name: &Path,
     base_dir: &Path,
     defines: &[(String, String)],
-) -> Result<Scene, LoadError> {
+) -> Result<Job, LoadError> {
     let tree = xml::parse_string_named(xml, name, base_dir, defines)?;
     build_scene(&tree, base_dir)
 }

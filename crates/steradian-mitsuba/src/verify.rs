@@ -9,8 +9,8 @@
 use std::path::Path;
 
 use serde_json::Value;
-use steradian::integrator::{render, RenderOptions};
 use steradian::radiometry as rad;
+use steradian::render::{render, RenderOptions};
 
 /// The embedded scenes, by the file name the cases use.
 const SCENES: &[(&str, &str)] = &[
@@ -123,6 +123,7 @@ pub fn run_case(
         crate::load_string(xml, Path::new(file), Path::new("."), &[]).map_err(|e| e.to_string())?;
     let sensor_id = case["sensor_id"].as_str().ok_or("case without sensor_id")?;
     let sensor = scene
+        .scene
         .sensor_index(sensor_id)
         .ok_or_else(|| format!("{file} has no sensor '{sensor_id}'"))?;
     let spp = spp_override.unwrap_or(as_f64(&case["spp"], "spp")? as u32);

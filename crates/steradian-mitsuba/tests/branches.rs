@@ -5,7 +5,8 @@
 
 use std::path::Path;
 
-use steradian::integrator::{render, Branches, Integrator, RenderOptions, DEFAULT_BRANCHES};
+use steradian::integrator::{Branches, Integrator, DEFAULT_BRANCHES};
+use steradian::render::{render, RenderOptions};
 
 mod common;
 use common::SENSOR;

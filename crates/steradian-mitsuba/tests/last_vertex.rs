@@ -9,7 +9,7 @@ use std::path::Path;
 
 use glam::Vec3;
 use steradian::integrator::{Integrator, LastVertex};
-use steradian::scene::Scene;
+use steradian::render::Job;
 
 mod common;
 use common::SENSOR;
@@ -43,13 +43,13 @@ const SPHERES: &str = r#"
         <shape type="rectangle"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate y="1" z="1.5"/></transform>
             <emitter type="area"><rgb name="radiance" value="5"/></emitter></shape>"#;
 
-fn load(xml: &str) -> Scene {
+fn load(xml: &str) -> Job {
     steradian_mitsuba::load_string(xml, Path::new("last_vertex.xml"), Path::new("."), &[])
         .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The image mean (red channel) and its standard error with the given last-vertex estimator.
-fn mean_and_error(mut s: Scene, last_vertex: LastVertex, seed: u64) -> (f64, f64) {
+fn mean_and_error(mut s: Job, last_vertex: LastVertex, seed: u64) -> (f64, f64) {
     let Integrator::Path(p) = &mut s.integrator else { panic!("a path integrator") };
     p.last_vertex = last_vertex;
     common::scene_mean_and_error(&s, seed)
@@ -77,7 +77,7 @@ fn light_only_last_vertex_keeps_the_expectation() {
 
 #[test]
 fn light_sampling_suffices_only_where_bounded() {
-    let s = load(&scene_xml(3, SPHERES));
+    let s = load(&scene_xml(3, SPHERES)).scene;
     let diffuse = &s.bsdfs[s.bindings[0].bsdf as usize];
     let glossy = &s.bsdfs[s.bindings[1].bsdf as usize];
     let twosided = &s.bsdfs[s.bindings[2].bsdf as usize];
@@ -92,15 +92,16 @@ fn light_sampling_suffices_only_where_bounded() {
 
     // a disk light is sampled by area everywhere: always MIS
     let disk = r#"<shape type="disk"><transform name="to_world"><translate z="2"/></transform><emitter type="area"/></shape>"#;
-    let s = load(&scene_xml(3, &format!("{SPHERES}{disk}")));
+    let s = load(&scene_xml(3, &format!("{SPHERES}{disk}"))).scene;
     assert!(!s.light_sampling_suffices(&s.bsdfs[s.bindings[0].bsdf as usize], open));
     // an environment: always MIS
-    let s = load(&scene_xml(3, r#"<emitter type="constant"/>"#));
+    let s = load(&scene_xml(3, r#"<emitter type="constant"/>"#)).scene;
     assert!(!s.light_sampling_suffices(&s.bsdfs[s.bindings[0].bsdf as usize], open));
     // delta lights only: no ray can find light, at any BSDF
     let s = load(&scene_xml(
         3,
         r#"<emitter type="point"><point name="position" x="0" y="0" z="1"/></emitter>"#,
-    ));
+    ))
+    .scene;
     assert!(s.light_sampling_suffices(&s.bsdfs[s.bindings[1].bsdf as usize], open));
 }

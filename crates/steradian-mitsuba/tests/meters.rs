@@ -3,14 +3,14 @@
 
 use std::path::Path;
 
-use steradian::integrator::{render, RenderOptions};
 use steradian::radiometry;
+use steradian::render::{render, RenderOptions};
 
 /// Renders sensor `id` of an inline scene; returns (value, stderr) of the single pixel.
 fn measure(xml: &str, id: &str, spp: u32, seed: u64) -> ([f64; 3], [f64; 3]) {
     let scene = steradian_mitsuba::load_string(xml, Path::new("meter.xml"), Path::new("."), &[])
         .unwrap_or_else(|e| panic!("{e}"));
-    let sensor = scene.sensor_index(id).unwrap();
+    let sensor = scene.scene.sensor_index(id).unwrap();
     let out = render(
         &scene,
         &RenderOptions {

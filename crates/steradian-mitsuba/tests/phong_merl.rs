@@ -11,7 +11,7 @@ use steradian::bsdf::{
     ShadingPoint,
 };
 use steradian::film::Image;
-use steradian::integrator::{render, RenderOptions};
+use steradian::render::{render, RenderOptions};
 use steradian::sampling::{Pcg32, SamplerKind};
 use steradian::{Spectrum, Vec2, Vec3};
 use steradian_mitsuba::{load_file, LoadError};
@@ -40,7 +40,7 @@ fn render_with_stderr(
     defines: &[(&str, &str)],
     spp: u32,
     seed: u64,
-) -> (Image, Image, steradian::scene::Scene) {
+) -> (Image, Image, steradian::render::Job) {
     let defines: Vec<(String, String)> =
         defines.iter().map(|(a, b)| (a.to_string(), b.to_string())).collect();
     let scene = load_file(path, &defines).unwrap_or_else(|e| panic!("{e}"));
@@ -127,7 +127,7 @@ fn shipped_scenes_render() {
         assert!(m.iter().all(|x| x.is_finite() && *x > 0.01), "{name}: {m:?}");
         let want = if name.contains("merl") { "Merl" } else { "Phong" };
         assert!(
-            scene.bsdfs.iter().any(|b| format!("{b:?}").starts_with(want)),
+            scene.scene.bsdfs.iter().any(|b| format!("{b:?}").starts_with(want)),
             "{name} has no {want} BSDF"
         );
     }
@@ -178,7 +178,7 @@ fn compare_file_with_analytic(test: &str, merl_bytes: &[u8], analytic: &Bsdf, an
     let (a, sa, scene) = render_with_stderr(&dir.join("merl.xml"), &[], spp, 1);
     let (b, sb, _) = render_with_stderr(&dir.join("analytic.xml"), &[], spp, 2);
 
-    let merl = scene.bsdfs.iter().find(|b| matches!(b, Bsdf::Merl(_))).unwrap();
+    let merl = scene.scene.bsdfs.iter().find(|b| matches!(b, Bsdf::Merl(_))).unwrap();
     let mut rng = Pcg32::new(5, 9);
     let mut eps = 0f32;
     for _ in 0..20_000 {
@@ -368,7 +368,7 @@ fn phong_defaults_and_parameters() {
         );
         let scene = steradian_mitsuba::load_string(&xml, Path::new("t.xml"), Path::new("."), &[])
             .unwrap_or_else(|e| panic!("{e}"));
-        match scene.bsdfs.into_iter().next().unwrap() {
+        match scene.scene.bsdfs.into_iter().next().unwrap() {
             Bsdf::Phong(p) => p,
             b => panic!("{b:?}"),
         }

@@ -13,7 +13,7 @@
 use std::path::PathBuf;
 
 use steradian::film::{read_exr, rel_mse, Image};
-use steradian::integrator::{render, RenderOptions};
+use steradian::render::{render, RenderOptions};
 
 /// Camera samples per pixel of every comparison.
 const SPP: u32 = 64;

@@ -1,16 +1,16 @@
-//! The image driver's passes (`integrator/render.rs`): threads take tiles from one queue with
+//! The image driver's passes (`render/`): threads take tiles from one queue with
 //! no barrier between passes, yet the image is the same for any thread count, and a render
 //! cancelled part-way keeps exactly the passes it finished.
 
 use std::path::Path;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
-use steradian::integrator::{render, Progress, RenderOptions, RenderOutput};
-use steradian::scene::Scene;
+use steradian::render::Job;
+use steradian::render::{render, Progress, RenderOptions, RenderOutput};
 
 /// A 40 × 24 film (2 × 1 tiles, so each pass is split into sample ranges too) of a floor and a
 /// wall lit by a disk, with a gaussian filter (blocks overlap across tile borders).
-fn scene() -> Scene {
+fn scene() -> Job {
     let xml = r#"<scene version="3.0.0">
         <integrator type="path"><integer name="max_depth" value="4"/><integer name="branches" value="2"/></integrator>
         <sensor type="perspective"><float name="fov" value="60"/>

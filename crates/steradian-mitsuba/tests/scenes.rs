@@ -301,12 +301,12 @@ fn spectra_and_broadcasts() {
 #[test]
 fn pgo_training_scene_renders() {
     use steradian::emitter::Emitter;
-    use steradian::integrator::{render, RenderOptions};
+    use steradian::render::{render, RenderOptions};
     use steradian::shape::Shape;
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../benches/pgo/training.xml");
     let defines = [("res".to_string(), "32".to_string())];
     let scene = steradian_mitsuba::load_file(&path, &defines).unwrap_or_else(|e| panic!("{e}"));
-    let bsdfs: Vec<String> = scene.bsdfs.iter().map(|b| format!("{b:?}")).collect();
+    let bsdfs: Vec<String> = scene.scene.bsdfs.iter().map(|b| format!("{b:?}")).collect();
     for kind in ["Dielectric", "RoughDielectric", "ThinDielectric", "Conductor", "RoughConductor"] {
         assert!(bsdfs.iter().any(|b| b.starts_with(kind)), "no {kind} BSDF in {bsdfs:?}");
     }
@@ -314,9 +314,9 @@ fn pgo_training_scene_renders() {
         bsdfs.iter().any(|b| b.starts_with("RoughConductor") && b.contains("Ggx")),
         "no GGX rough conductor"
     );
-    let sphere_light = scene.emitters.iter().any(|e| matches!(e, Emitter::Area(a) if matches!(scene.shapes[a.shape as usize], Shape::Sphere(_))));
+    let sphere_light = scene.scene.emitters.iter().any(|e| matches!(e, Emitter::Area(a) if matches!(scene.scene.shapes[a.shape as usize], Shape::Sphere(_))));
     assert!(sphere_light, "no spherical area light");
-    assert!(scene.emitters.iter().any(|e| matches!(e, Emitter::Spot(_))), "no spot light");
+    assert!(scene.scene.emitters.iter().any(|e| matches!(e, Emitter::Spot(_))), "no spot light");
     let out = render(&scene, &RenderOptions { spp: Some(2), seed: Some(1), ..Default::default() })
         .unwrap();
     assert_eq!(out.dropped_samples, 0);

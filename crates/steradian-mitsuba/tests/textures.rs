@@ -18,7 +18,7 @@ fn assets() -> PathBuf {
 /// Writes `body` (scene-level elements after an integrator and a sensor, from line 4) to
 /// `name` in a fresh folder (tests run in parallel) next to copies of the reference assets,
 /// and loads it.
-fn load(name: &str, body: &str) -> Result<steradian::scene::Scene, LoadError> {
+fn load(name: &str, body: &str) -> Result<steradian::render::Job, LoadError> {
     static CALLS: AtomicUsize = AtomicUsize::new(0);
     let call = CALLS.fetch_add(1, Ordering::Relaxed);
     let dir =
@@ -52,7 +52,7 @@ fn err(name: &str, body: &str, line: u32, col: u32, needles: &[&str]) {
 fn bsdf_of(body: &str) -> Bsdf {
     let scene = load("ok.xml", &format!("<shape type=\"rectangle\">{body}</shape>"))
         .unwrap_or_else(|e| panic!("{e}"));
-    scene.bsdfs.last().unwrap().clone()
+    scene.scene.bsdfs.last().unwrap().clone()
 }
 
 #[test]
@@ -142,7 +142,7 @@ fn textures_wherever_mitsuba_takes_them() {
            <shape type="rectangle"><emitter type="area"><ref name="radiance" id="sky"/></emitter></shape>"#,
     )
     .unwrap();
-    let Emitter::Area(a) = &scene.emitters[0] else { panic!() };
+    let Emitter::Area(a) = &scene.scene.emitters[0] else { panic!() };
     // light.exr texel (0, 0) = (16, 15, 13)
     assert_eq!(a.radiance.eval(Vec2::new(0.1, 0.1)), Spectrum::new(16.0, 15.0, 13.0));
 }
@@ -312,6 +312,7 @@ fn reference_scene_loads() {
     let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/textures.xml");
     let scene = load_file(&path, &[]).unwrap();
     let kinds: Vec<&str> = scene
+        .scene
         .bsdfs
         .iter()
         .map(|b| match b {
@@ -349,7 +350,7 @@ fn mask_scene(integrator: &str, opacity: Option<f32>) -> String {
 
 /// Image means of independent renders (seeds 1..=n): their mean and standard error.
 fn mean_and_se(xml: &str, spp: u32, n: u64) -> (f64, f64) {
-    use steradian::integrator::{render, RenderOptions};
+    use steradian::render::{render, RenderOptions};
     let scene =
         steradian_mitsuba::load_string(xml, Path::new("mask.xml"), Path::new("."), &[]).unwrap();
     let means: Vec<f64> = (1..=n)
@@ -387,7 +388,7 @@ fn masks_in_path_and_direct_behave_as_in_mitsuba() {
 
 /// Hits `shape_xml` along the ray (o, d).
 fn hit(
-    scene: &steradian::scene::Scene,
+    scene: &steradian::render::Job,
     o: [f32; 3],
     d: [f32; 3],
 ) -> steradian::geometry::SurfaceInteraction {
@@ -395,7 +396,7 @@ fn hit(
         steradian::Vec3::from(o),
         steradian::Vec3::from(d).normalize(),
     );
-    scene.intersect(&ray).expect("the ray must hit")
+    scene.scene.intersect(&ray).expect("the ray must hit")
 }
 
 #[test]

@@ -2,7 +2,7 @@
 
 use pyo3::exceptions::{PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
-use steradian::integrator::RenderError;
+use steradian::render::RenderError;
 use steradian_mitsuba::LoadError;
 
 pyo3::create_exception!(
@@ -35,9 +35,10 @@ pub fn scene_error(py: Python<'_>, e: &LoadError) -> PyErr {
 pub fn render_error(e: RenderError) -> PyErr {
     match e {
         RenderError::ThreadPool(_) => PyRuntimeError::new_err(e.to_string()),
-        RenderError::NoSensor | RenderError::BadSensor(_) | RenderError::NotACamera => {
-            PyValueError::new_err(e.to_string())
-        }
+        RenderError::NoSensor
+        | RenderError::BadSensor(_)
+        | RenderError::NotACamera
+        | RenderError::BadOption { .. } => PyValueError::new_err(e.to_string()),
     }
 }
 

@@ -16,7 +16,7 @@ use std::time::Duration;
 
 use pyo3::exceptions::PyRuntimeError;
 use pyo3::prelude::*;
-use steradian::integrator::Progress;
+use steradian::render::Progress;
 
 /// How often the waiting thread checks for signals and reports progress.
 const POLL: Duration = Duration::from_millis(50);

@@ -1,7 +1,7 @@
 //! `steradian._steradian`: the Python extension module.
 //!
 //! Bindings only. Scenes are loaded by `steradian-mitsuba`, rendered and measured by the same
-//! driver the `steradian` command uses (`steradian::integrator::{render, measure}`) with the
+//! driver the `steradian` command uses (`steradian::render::{render, measure}`) with the
 //! same defaults, so an image from Python equals the command's EXR bit for bit. This crate
 //! converts arguments and results, releases the GIL while rendering, turns Ctrl-C into
 //! `KeyboardInterrupt` and forwards progress to a Python callback.

@@ -6,7 +6,7 @@ use std::sync::Arc;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
-use steradian::integrator::{measure, render, PixelQuantity, RenderOptions};
+use steradian::render::{measure, render, Job, PixelQuantity, RenderOptions};
 use steradian::sensor::Quantity;
 
 use crate::array::to_array;
@@ -70,7 +70,7 @@ pub fn load_string(
 /// share between threads.
 #[pyclass(frozen, module = "steradian._steradian")]
 pub struct Scene {
-    inner: Arc<steradian::scene::Scene>,
+    inner: Arc<Job>,
     name: String,
 }
 
@@ -83,10 +83,12 @@ enum SensorArg {
 
 impl Scene {
     fn sensor(&self, sensor: Option<SensorArg>) -> PyResult<usize> {
-        let n = self.inner.sensors.len();
+        let n = self.inner.scene.sensors.len();
         match sensor {
             None => Ok(0),
-            Some(SensorArg::Id(id)) => self.inner.find_sensor(&id).map_err(PyValueError::new_err),
+            Some(SensorArg::Id(id)) => {
+                self.inner.scene.find_sensor(&id).map_err(PyValueError::new_err)
+            }
             Some(SensorArg::Index(i)) => match usize::try_from(i) {
                 Ok(i) if i < n => Ok(i),
                 _ => Err(PyValueError::new_err(format!(
@@ -95,17 +97,6 @@ impl Scene {
             },
         }
     }
-}
-
-/// Checks the options shared by `render` and `measure`.
-fn check_counts(spp: Option<u32>, threads: Option<usize>) -> PyResult<()> {
-    if spp == Some(0) {
-        return Err(PyValueError::new_err("spp must be at least 1"));
-    }
-    if threads == Some(0) {
-        return Err(PyValueError::new_err("threads must be at least 1"));
-    }
-    Ok(())
 }
 
 #[pymethods]
@@ -142,16 +133,10 @@ impl Scene {
         threads: Option<usize>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        check_counts(spp, threads)?;
-        let (pixel_quantity, lux) = match quantity {
-            "radiance" => (PixelQuantity::Sensor, false),
-            "irradiance" => (PixelQuantity::SurfaceIrradiance, false),
-            "illuminance" => (PixelQuantity::SurfaceIrradiance, true),
-            q => {
-                return Err(PyValueError::new_err(format!(
-                    "quantity must be 'radiance', 'irradiance' or 'illuminance', not '{q}'"
-                )))
-            }
+        let Some(pixel_quantity) = PixelQuantity::from_name(quantity) else {
+            return Err(PyValueError::new_err(format!(
+                "quantity must be 'radiance', 'irradiance' or 'illuminance', not '{quantity}'"
+            )));
         };
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
@@ -169,8 +154,7 @@ impl Scene {
             render(scene, &opts)
         })?
         .map_err(render_error)?;
-        let image = out.film.develop();
-        to_array(py, &if lux { image.to_illuminance() } else { image })
+        to_array(py, &out.image())
     }
 
     /// Reads a sensor: its value per RGB channel with the standard error of that value, in the
@@ -190,7 +174,6 @@ impl Scene {
         threads: Option<usize>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Measurement> {
-        check_counts(spp, threads)?;
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
         let m = run_interruptible(py, progress, |cancel, report| {
@@ -212,7 +195,7 @@ impl Scene {
     /// The `id` of each sensor, in scene order (`""` for a sensor without one).
     #[getter]
     fn sensor_ids(&self) -> Vec<String> {
-        self.inner.sensors.iter().map(|s| s.id.clone()).collect()
+        self.inner.scene.sensors.iter().map(|s| s.id.clone()).collect()
     }
 
     /// The film size (width, height) in pixels of a sensor (index or id; default the first).
@@ -221,6 +204,7 @@ impl Scene {
         let i = self.sensor(sensor)?;
         let f = &self
             .inner
+            .scene
             .sensors
             .get(i)
             .ok_or_else(|| PyValueError::new_err("the scene has no sensor"))?
@@ -229,7 +213,7 @@ impl Scene {
     }
 
     fn __repr__(&self) -> String {
-        let s = &*self.inner;
+        let s = &self.inner.scene;
         format!(
             "<steradian.Scene {}: {} shapes, {} emitters, {} sensors>",
             self.name,
@@ -243,7 +227,7 @@ impl Scene {
 /// A sensor reading: `value` and `stderr` (float64 arrays of shape (3,), RGB, in `unit`).
 #[pyclass(frozen, module = "steradian._steradian")]
 pub struct Measurement {
-    inner: steradian::integrator::Measurement,
+    inner: steradian::render::Measurement,
 }
 
 #[pymethods]

@@ -18,6 +18,23 @@
 //! - PDFs are per unit solid angle (1/sr) unless a name says otherwise (`pdf_area`, 1/m²).
 //! - Monte Carlo estimates are unbiased; NaN and infinite samples never reach the film: they are
 //!   dropped and counted.
+//!
+//! ## Layers
+//! Each module imports only modules of lower layers, and the files inside a module import each
+//! other without cycles (`tests/layers.rs` reads this list and checks the code against it):
+//! 1. `spectrum`, `radiometry`: RGB quantities, units and the closed forms of radiometry.
+//! 2. `geometry`: rays, frames, transforms, bounding boxes, ray–triangle intersection.
+//! 3. `sampling`: random and low-discrepancy numbers, warps, discrete distributions.
+//! 4. `film`: images, reconstruction filters, image blocks, EXR and PNG files.
+//! 5. `texture`: bitmaps and procedural textures.
+//! 6. `shape`: surfaces, their intersection and their sampling.
+//! 7. `bsdf`: BRDFs and BTDFs.
+//! 8. `emitter`: light sources, and how next-event estimation chooses among them.
+//! 9. `accel`: the BVH over the shapes.
+//! 10. `sensor`: cameras and meters.
+//! 11. `scene`: shapes, materials, lights and sensors with their BVH.
+//! 12. `integrator`: estimators of radiance and irradiance over a scene.
+//! 13. `render`: the render driver (a scene and its integrator in, films and readings out).
 
 pub mod accel;
 pub mod bsdf;
@@ -26,6 +43,7 @@ pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod radiometry;
+pub mod render;
 pub mod sampling;
 pub mod scene;
 pub mod sensor;

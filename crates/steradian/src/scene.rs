@@ -1,15 +1,17 @@
-//! The scene: shapes with their BSDFs and emitters, lights, sensors, the integrator, and the
-//! acceleration structure that answers ray queries.
+//! The scene: shapes with their BSDFs and emitters, lights, sensors, and the acceleration
+//! structure that answers ray queries. The integrator that estimates its light is not part of
+//! it (integrators sit a layer above the scene): a scene file's scene and integrator travel
+//! together as a [`Job`](crate::render::Job).
 
 use glam::{Vec2, Vec3};
 
 use crate::accel::Accel;
 use crate::bsdf::Bsdf;
-use crate::emitter::{Emitter, EmitterSample, Support};
+use crate::emitter::{Emitter, EmitterSample, LightSelection, Support};
+use crate::geometry::SurfacePoint;
 use crate::geometry::{Aabb, Ray, SurfaceInteraction};
-use crate::integrator::Integrator;
 use crate::sensor::Sensor;
-use crate::shape::{Shape, SurfacePoint};
+use crate::shape::Shape;
 
 /// What a shape is made of and whether it glows.
 #[derive(Clone, Debug, PartialEq)]
@@ -29,7 +31,9 @@ pub struct SceneDescription {
     pub bsdfs: Vec<Bsdf>,
     pub emitters: Vec<Emitter>,
     pub sensors: Vec<Sensor>,
-    pub integrator: Option<Integrator>,
+    /// How next-event estimation chooses among the emitters (the integrator's
+    /// `light_selection`): the scene tabulates the choice once.
+    pub light_selection: LightSelection,
 }
 
 /// A renderable scene.
@@ -42,7 +46,6 @@ pub struct Scene {
     /// The light at infinity that escaping rays see (Mitsuba allows one).
     pub environment: Option<u32>,
     pub sensors: Vec<Sensor>,
-    pub integrator: Integrator,
     accel: Accel,
     /// Next-event estimation's light choice: probability of each emitter, and the running sum.
     light_pmf: Vec<f32>,
@@ -109,10 +112,9 @@ impl Scene {
         if envs.len() > 1 {
             return Err("only one environment emitter (`constant`) is allowed per scene".into());
         }
-        let integrator = desc.integrator.ok_or("the scene has no integrator")?;
         let accel = Accel::build(&shapes);
         let (light_pmf, light_cdf) =
-            integrator.light_selection().distribution(&desc.emitters, &shapes, accel.bounds());
+            desc.light_selection.distribution(&desc.emitters, &shapes, accel.bounds());
         Ok(Scene {
             last_vertex: LastVertexLights::of(&desc.emitters),
             light_pmf,
@@ -123,7 +125,6 @@ impl Scene {
             emitters: desc.emitters,
             environment: envs.first().copied(),
             sensors: desc.sensors,
-            integrator,
             accel,
         })
     }
@@ -158,7 +159,7 @@ impl Scene {
         Some((e, &self.emitters[e as usize]))
     }
 
-    /// Probability of choosing emitter `e` for next-event estimation (see [`LightSelection`](crate::integrator::LightSelection)).
+    /// Probability of choosing emitter `e` for next-event estimation (see [`LightSelection`]).
     #[inline]
     pub fn emitter_selection_pdf(&self, e: u32) -> f32 {
         self.light_pmf[e as usize]

@@ -348,7 +348,7 @@ mod tests {
             r#"<scene version="3.0.0"><integrator type="path"/><sensor type="perspective"/><shape type="sphere">{bsdf_xml}</shape></scene>"#
         );
         crate::load_string(&xml, Path::new("t.xml"), Path::new("."), &[])
-            .map(|s| s.bsdfs.clone())
+            .map(|s| s.scene.bsdfs.clone())
             .map_err(|e| e.to_string())
     }
 
@@ -496,6 +496,7 @@ mod tests {
         let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference/veach.xml");
         let scene = crate::load_file(&path, &[]).unwrap();
         let rough: Vec<f32> = scene
+            .scene
             .bsdfs
             .iter()
             .filter_map(|b| match b {

@@ -1,8 +1,8 @@
 //! Integrator plugins: `path`, `direct`.
 
+use steradian::emitter::LightSelection;
 use steradian::integrator::{
-    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LightSelection,
-    DEFAULT_RR_SCALE,
+    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, DEFAULT_RR_SCALE,
 };
 use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
 

@@ -18,6 +18,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use steradian::bsdf::Bsdf;
+use steradian::render::Job;
 use steradian::scene::{Scene, SceneDescription};
 
 use crate::error::LoadError;
@@ -124,7 +125,7 @@ pub(crate) fn at_property<'a>(
 }
 
 /// Builds the renderable scene from a parsed tree.
-pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError> {
+pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> {
     let root: &PluginNode = &tree.root;
     let mut b = Builder {
         desc: SceneDescription::default(),
@@ -134,6 +135,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError
         base_dir: base_dir.to_path_buf(),
     };
     let mut integrator_pos = None;
+    let mut integrator = None;
     let mut environment_pos = None;
     for child in &root.children {
         child.mark_used();
@@ -170,7 +172,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError
                         format!("a scene has one integrator; the first is at {first}"),
                     ));
                 }
-                b.desc.integrator = Some(integrators::build(node)?);
+                integrator = Some(integrators::build(node)?);
             }
             tag => {
                 return Err(LoadError::at(
@@ -184,11 +186,13 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError
         }
     }
     root.check_all_used()?;
-    if b.desc.integrator.is_none() {
+    let Some(integrator) = integrator else {
         return Err(LoadError::at(
             &root.pos,
             "the scene has no <integrator> (Mitsuba 3 gives none by default; add e.g. <integrator type=\"path\"/>)",
         ));
-    }
-    Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))
+    };
+    b.desc.light_selection = integrator.light_selection();
+    let scene = Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))?;
+    Ok(Job { scene, integrator })
 }

@@ -2,9 +2,9 @@
 
 use std::path::Path;
 
-use steradian::integrator::{render, RenderOptions};
+use steradian::render::Job;
+use steradian::render::{render, RenderOptions};
 use steradian::sampling::SamplerKind;
-use steradian::scene::Scene;
 
 /// The camera of the small integration-test scenes (`branches.rs`, `last_vertex.rs`): 60° from
 /// (0, 0, 4) towards the origin, a 24 × 24 film with a box filter, so each pixel's error comes
@@ -26,7 +26,7 @@ pub fn mean_and_error(xml: &str, file: &str, seed: u64) -> (f64, f64) {
 /// The red channel's image mean of a loaded scene at 256 i.i.d. samples per pixel, and its
 /// standard error: pixels are independent, and each pixel's error comes from the film, which
 /// sees one value per camera sample; i.i.d. numbers keep it honest.
-pub fn scene_mean_and_error(s: &Scene, seed: u64) -> (f64, f64) {
+pub fn scene_mean_and_error(s: &Job, seed: u64) -> (f64, f64) {
     let out = render(
         s,
         &RenderOptions {

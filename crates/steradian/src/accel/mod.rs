@@ -17,13 +17,12 @@
 //!   feature detection: AVX2 on x86-64, a portable scalar set elsewhere. Both give
 //!   bit-identical results.
 
+mod kernel;
 mod sah_build;
 mod simd;
 mod traverse;
-mod triangle;
 mod wide;
 
-pub use triangle::intersect_triangle;
 pub use wide::{Accel, AccelStats, Isa};
 
 #[cfg(test)]

@@ -12,8 +12,8 @@
 use glam::Vec3;
 use rayon::prelude::*;
 
+use crate::geometry::is_positive;
 use crate::geometry::Aabb;
-use crate::shape::is_positive;
 
 /// Number of SAH bins per axis.
 const BINS: usize = 32;

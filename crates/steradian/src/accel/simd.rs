@@ -6,9 +6,9 @@
 //! per plane; the triangle test handles two [`Tri4`] packets (8 triangles) in 256-bit
 //! registers, so that a leaf of two packets, the common case in small scenes, is one test.
 
-use super::traverse::{Kernel, LaneHit, TravRay};
-use super::triangle::{edge_functions_f64, watertight_core};
+use super::kernel::{Kernel, LaneHit, TravRay};
 use super::wide::{Node8, Tri4, WIDTH};
+use crate::geometry::triangle::{edge_functions_f64, watertight_core};
 
 /// Portable kernels (the compiler may still vectorise the lane loops).
 #[derive(Debug)]

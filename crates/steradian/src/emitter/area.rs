@@ -11,8 +11,9 @@
 use glam::{Vec2, Vec3};
 
 use super::{EmitterSample, Support};
-use crate::shape::is_positive;
-use crate::shape::{Shape, SurfacePoint, UvRequest};
+use crate::geometry::is_positive;
+use crate::geometry::SurfacePoint;
+use crate::shape::{Shape, UvRequest};
 use crate::texture::Texture;
 use crate::Spectrum;
 

@@ -16,18 +16,21 @@
 mod area;
 mod constant;
 mod directional;
+mod light_selection;
 mod point;
 mod spot;
 
 pub use area::AreaLight;
 pub use constant::ConstantEnvironment;
 pub use directional::DirectionalLight;
+pub use light_selection::LightSelection;
 pub use point::PointLight;
 pub use spot::SpotLight;
 
 use glam::{Vec2, Vec3};
 
-use crate::shape::{Shape, SurfacePoint};
+use crate::geometry::SurfacePoint;
+use crate::shape::Shape;
 use crate::Spectrum;
 
 /// Whether a light can be hit by a ray or only reached by sampling it.

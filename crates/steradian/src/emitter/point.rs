@@ -11,7 +11,7 @@
 use glam::Vec3;
 
 use super::{EmitterSample, Support};
-use crate::shape::is_positive;
+use crate::geometry::is_positive;
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]

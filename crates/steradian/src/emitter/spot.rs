@@ -13,8 +13,8 @@
 use glam::Vec3;
 
 use super::{EmitterSample, Support};
+use crate::geometry::is_positive;
 use crate::geometry::{Frame, Transform};
-use crate::shape::is_positive;
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]

@@ -1,4 +1,4 @@
-use crate::shape::is_positive;
+use super::is_positive;
 use glam::Vec3;
 
 /// An orthonormal frame (s, t, n). Converts between world space and a local space in which

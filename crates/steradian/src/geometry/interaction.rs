@@ -75,8 +75,8 @@ impl SurfaceInteraction {
 
     /// The point as density queries need it (position, geometric normal, primitive).
     #[inline]
-    pub fn surface_point(&self) -> crate::shape::SurfacePoint {
-        crate::shape::SurfacePoint { p: self.p, n: self.n, prim: self.prim }
+    pub fn surface_point(&self) -> SurfacePoint {
+        SurfacePoint { p: self.p, n: self.n, prim: self.prim }
     }
 
     /// A ray leaving this point in direction `d` (unit), offset to avoid self-intersection.
@@ -98,3 +98,21 @@ impl SurfaceInteraction {
 
 /// Relative shortening of shadow rays so that they stop before the surface they aim at.
 pub const SHADOW_EPSILON: f32 = 1e-3;
+
+/// A point on a shape's surface, as density queries need it: where it is, its geometric
+/// normal, and the primitive it lies on (the density of solid-angle sampling depends on the
+/// triangle).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SurfacePoint {
+    /// Position, m.
+    pub p: Vec3,
+    /// Geometric normal (the shape's own orientation), unit.
+    pub n: Vec3,
+    /// Primitive index inside the shape.
+    pub prim: u32,
+}
+
+impl SurfacePoint {
+    /// Stands for "at infinity" where an environment emitter is hit (its density ignores it).
+    pub const AT_INFINITY: SurfacePoint = SurfacePoint { p: Vec3::ZERO, n: Vec3::ZERO, prim: 0 };
+}

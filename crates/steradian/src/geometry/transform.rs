@@ -2,8 +2,8 @@ use std::fmt;
 
 use glam::{Mat3, Mat4, Vec3, Vec4};
 
+use super::is_positive;
 use super::{Aabb, Ray};
-use crate::shape::is_positive;
 
 /// An affine (or projective) transform with its inverse. Points, vectors and normals
 /// transform differently: normals use the inverse transpose so they stay perpendicular to

@@ -55,11 +55,10 @@ use glam::UVec2;
 use rayon::prelude::*;
 
 use super::path::{Branches, RayCount};
-use super::render::film_position;
 use super::PathTracer;
 use crate::sampling::{mix64, Sampler};
 use crate::scene::Scene;
-use crate::sensor::{Quantity, Sensor};
+use crate::sensor::{film_position, Quantity, Sensor};
 use crate::spectrum::luminance;
 use crate::Spectrum;
 

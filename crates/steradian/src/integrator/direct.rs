@@ -6,7 +6,7 @@
 //! | `emitter_samples` | integer | shading_samples| light samples per camera ray |
 //! | `bsdf_samples`    | integer | shading_samples| BSDF samples per camera ray |
 //! | `hide_emitters`   | boolean | false          | emitters seen directly contribute nothing |
-//! | `light_selection` | string | `uniform`     | steradian's own: `uniform` or `power` (see `light_selection.rs`) |
+//! | `light_selection` | string | `uniform`     | steradian's own: `uniform` or `power` (see `emitter/light_selection.rs`) |
 //!
 //! Light samples and BSDF samples are combined with the power heuristic, each strategy weighted
 //! by its sample count, as Mitsuba 3's `direct` does.
@@ -15,13 +15,13 @@ use glam::{Vec2, Vec3};
 
 use super::mis::power_heuristic;
 use super::path::EmitterVisibility;
-use super::LightSelection;
 use crate::bsdf::{Lobe, ShadingPoint};
+use crate::emitter::LightSelection;
 use crate::emitter::Support;
 use crate::geometry::Ray;
+use crate::geometry::SurfacePoint;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
-use crate::shape::SurfacePoint;
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]

@@ -1,26 +1,22 @@
-//! Integrators: estimators of the radiance arriving along a camera ray, and the driver that
-//! turns them into images.
+//! Integrators: estimators of the radiance arriving along a camera ray (and of the irradiance
+//! at a surface point), over a [`Scene`]. The render driver (`crate::render`) turns them into
+//! images.
 
 mod branching;
 mod direct;
 mod irradiance;
-mod light_selection;
-mod measure;
 mod mis;
 mod path;
-mod render;
 
-pub use branching::{Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
+pub use branching::{pilot, Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
 pub use direct::DirectIntegrator;
 pub use irradiance::estimate_irradiance;
-pub use light_selection::LightSelection;
-pub use measure::{measure, Measurement};
 pub use path::{
     parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LastVertex,
     PathTracer, DEFAULT_BRANCHES, DEFAULT_RR_SCALE, MAX_BRANCHES,
 };
-pub use render::{render, PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};
 
+use crate::emitter::LightSelection;
 use crate::geometry::Ray;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;

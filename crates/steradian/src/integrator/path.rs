@@ -6,7 +6,7 @@
 //! | `rr_depth`      | integer | 5       | depth from which Russian roulette may end paths |
 //! | `rr_scale`      | float   | 4       | steradian's own: κ in the roulette's survival probability min(κ·max(β)·η², 0.95); 1 = Mitsuba's |
 //! | `hide_emitters` | boolean | false   | emitters seen directly by camera rays contribute nothing |
-//! | `light_selection` | string | `uniform` | steradian's own: `uniform` or `power` (see `light_selection.rs`) |
+//! | `light_selection` | string | `uniform` | steradian's own: `uniform` or `power` (see `emitter/light_selection.rs`) |
 //! | `branches`      | integer | chosen  | steradian's own: paths continued from each camera ray's first hit (1 to 64; 1 = Mitsuba's estimator); unset, a pilot chooses 1, 2, 4, 8 or 16 (`branching.rs`) |
 //!
 //! At every vertex with a non-delta BSDF one light is chosen uniformly and sampled (next-event
@@ -81,13 +81,13 @@
 use glam::Vec3;
 
 use super::mis::power_heuristic;
-use super::LightSelection;
 use crate::bsdf::{Lobe, ShadingPoint};
+use crate::emitter::LightSelection;
 use crate::emitter::Support;
+use crate::geometry::{is_positive, SurfacePoint};
 use crate::geometry::{Ray, SurfaceInteraction};
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
-use crate::shape::{is_positive, SurfacePoint};
 use crate::Spectrum;
 
 /// Whether directly visible emitters are drawn.

@@ -1,6 +1,6 @@
 //! Field of view as Mitsuba's projective cameras specify it.
 
-use crate::shape::is_positive;
+use crate::geometry::is_positive;
 use std::fmt;
 
 /// Which image axis a given `fov` applies to (`fov_axis`).

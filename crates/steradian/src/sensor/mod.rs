@@ -13,14 +13,11 @@ pub use perspective::Perspective;
 pub use radiancemeter::RadianceMeter;
 pub use thinlens::ThinLens;
 
-use glam::Vec2;
+use glam::{UVec2, Vec2};
 
 use crate::film::Film;
 use crate::geometry::Ray;
-use crate::integrator::{estimate_irradiance, Integrator};
 use crate::sampling::{PixelSampler, Sampler};
-use crate::scene::Scene;
-use crate::Spectrum;
 
 /// The sensor models. Closed enum: one variant per sensor plugin.
 #[derive(Clone, Debug)]
@@ -60,28 +57,6 @@ pub struct Sensor {
 }
 
 impl Sensor {
-    /// One sample of the sensor's measurement at film position `film_uv ∈ [0,1]²` ((0,0) =
-    /// top-left corner of the image): for cameras the radiance arriving along the ray through
-    /// that position (the next two dimensions of `sampler` choose the aperture point), for
-    /// meters their quantity (film position plays no part).
-    #[inline]
-    pub fn measure(
-        &self,
-        scene: &Scene,
-        integrator: &Integrator,
-        film_uv: Vec2,
-        sampler: &mut PixelSampler,
-    ) -> Spectrum {
-        if let SensorKind::IrradianceMeter(m) = &self.kind {
-            let ps = scene.shapes[m.shape as usize].sample_position(sampler.next_2d());
-            return estimate_irradiance(scene, integrator, ps.p, ps.n, sampler);
-        }
-        match self.start_ray(film_uv, sampler) {
-            Some(ray) => integrator.li(scene, &ray, sampler),
-            None => Spectrum::ZERO,
-        }
-    }
-
     /// For cameras, the ray through film position `film_uv` (consuming two dimensions of
     /// `sampler` for the aperture); `None` for meters.
     #[inline]
@@ -122,4 +97,13 @@ impl Sensor {
     pub fn is_meter(&self) -> bool {
         matches!(self.kind, SensorKind::RadianceMeter(_) | SensorKind::IrradianceMeter(_))
     }
+}
+
+/// Where on the film a camera sample lands: its pixel plus the sampler's first 2-D draw, in
+/// pixels (where the film splats it), and the same as a fraction of the film (`film_uv`, what
+/// [`Sensor::start_ray`] takes). The render and the branch-count pilot start every sample here.
+#[inline]
+pub fn film_position(pixel: UVec2, s: &mut PixelSampler, width: u32, height: u32) -> (Vec2, Vec2) {
+    let pos = pixel.as_vec2() + s.next_2d();
+    (pos, pos / Vec2::new(width as f32, height as f32))
 }

@@ -18,8 +18,8 @@
 
 use glam::{Vec2, Vec3};
 
+use crate::geometry::is_positive;
 use crate::geometry::{Ray, Transform};
-use crate::shape::is_positive;
 
 #[derive(Clone, Debug)]
 pub struct Perspective {

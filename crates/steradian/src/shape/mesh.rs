@@ -14,7 +14,7 @@ use super::{
     area_to_solid_angle, direction_from_position, is_positive_finite, DirectionSample,
     PositionSample, ShapeError,
 };
-use crate::accel::intersect_triangle;
+use crate::geometry::intersect_triangle;
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
 use crate::sampling::spherical_triangle::SphericalTriangle;
 use crate::sampling::warp;

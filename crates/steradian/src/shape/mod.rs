@@ -15,7 +15,8 @@ use std::fmt;
 
 use glam::{Vec2, Vec3};
 
-use crate::geometry::{Aabb, PreliminaryHit, Ray, SurfaceInteraction};
+pub(crate) use crate::geometry::{is_positive, is_positive_finite};
+use crate::geometry::{Aabb, PreliminaryHit, Ray, SurfaceInteraction, SurfacePoint};
 
 mod cube;
 mod cylinder;
@@ -84,24 +85,6 @@ pub enum UvRequest {
     Compute,
     /// `uv` may be left at zero.
     Skip,
-}
-
-/// A point on a shape's surface, as density queries need it: where it is, its geometric
-/// normal, and the primitive it lies on (the density of solid-angle sampling depends on the
-/// triangle).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct SurfacePoint {
-    /// Position, m.
-    pub p: Vec3,
-    /// Geometric normal (the shape's own orientation), unit.
-    pub n: Vec3,
-    /// Primitive index inside the shape.
-    pub prim: u32,
-}
-
-impl SurfacePoint {
-    /// Stands for "at infinity" where an environment emitter is hit (its density ignores it).
-    pub const AT_INFINITY: SurfacePoint = SurfacePoint { p: Vec3::ZERO, n: Vec3::ZERO, prim: 0 };
 }
 
 /// Why a shape could not be built. The message only; the scene loader adds file and line.
@@ -301,18 +284,6 @@ pub(crate) fn direction_from_position(
         return None;
     }
     Some(DirectionSample { p: ps.p, n: ps.n, uv: ps.uv, wi: d / dist, dist, pdf, prim })
-}
-
-/// `x > 0`, false for NaN (written as a function so that NaN-rejecting tests read clearly).
-#[inline]
-pub(crate) fn is_positive<T: PartialOrd + Default>(x: T) -> bool {
-    x > T::default()
-}
-
-/// `0 < x < ∞`, false for NaN.
-#[inline]
-pub(crate) fn is_positive_finite(x: f32) -> bool {
-    x.is_finite() && x > 0.0
 }
 
 /// φ / 2π in [0, 1) for a local point.

@@ -22,7 +22,7 @@
 use glam::{Vec2, Vec3};
 
 use super::{direction_from_position, is_positive_finite, DirectionSample, PositionSample};
-use crate::accel::intersect_triangle;
+use crate::geometry::intersect_triangle;
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
 use crate::sampling::spherical_rectangle::{RectangleFrame, SphericalRectangle};
 

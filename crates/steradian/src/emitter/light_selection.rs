@@ -13,7 +13,7 @@
 //! uniform rule 0.0031 (two seeds each). Whatever the rule, the estimator divides by the
 //! probability, so it stays unbiased.
 
-use crate::emitter::Emitter;
+use super::Emitter;
 use crate::geometry::Aabb;
 use crate::shape::Shape;
 

@@ -9,17 +9,17 @@
 //! least one of them: no cracks. Edge functions that come out exactly 0 are recomputed in f64,
 //! as the paper prescribes, so that the sign on an edge is exact.
 //!
-//! [`intersect_triangle`] is the scalar reference; the SIMD kernels in `simd.rs` evaluate the
+//! [`intersect_triangle`] is the scalar reference; the SIMD kernels of the BVH (`accel/simd.rs`) evaluate the
 //! same operations in the same order on 4 triangles at once (no FMA contraction), so both give
 //! bit-identical distances and barycentrics.
 
 use glam::{Vec2, Vec3};
 
-use crate::geometry::Ray;
+use super::Ray;
 
 /// Per-ray constants of the watertight test.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct WatertightRay {
+pub(crate) struct WatertightRay {
     /// Axis permutation: `k[2]` is the axis of the largest |d| component.
     pub k: [usize; 3],
     /// Shear constants `(d[kx]/d[kz], d[ky]/d[kz], 1/d[kz])` (the first two as products with
@@ -52,7 +52,7 @@ impl WatertightRay {
 /// ray origin, already permuted to (kx, ky, kz). Returns `(t, b1, b2)` with
 /// `t_min < t < t_max`.
 #[inline(always)]
-pub(super) fn watertight_core(
+pub(crate) fn watertight_core(
     a: [f32; 3],
     b: [f32; 3],
     c: [f32; 3],
@@ -88,7 +88,7 @@ pub(super) fn watertight_core(
 /// `[ax, ay, bx, by, cx, cy]` (exact products: the sign is right even on an edge).
 #[cold]
 #[inline(never)]
-pub(super) fn edge_functions_f64(p: [f32; 6]) -> (f32, f32, f32) {
+pub(crate) fn edge_functions_f64(p: [f32; 6]) -> (f32, f32, f32) {
     let [ax, ay, bx, by, cx, cy] = p.map(f64::from);
     ((cx * by - cy * bx) as f32, (ax * cy - ay * cx) as f32, (bx * ay - by * ax) as f32)
 }

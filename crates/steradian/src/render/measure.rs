@@ -6,8 +6,7 @@
 //! film, and its standard error combines the pixels' errors as independent estimates,
 //! σ_mean = √(Σ σ_p²) / N for N pixels.
 
-use crate::integrator::{render, RenderError, RenderOptions, RenderOutput};
-use crate::scene::Scene;
+use super::{render, Job, RenderError, RenderOptions, RenderOutput};
 use crate::sensor::Quantity;
 
 /// One sensor reading.
@@ -34,11 +33,11 @@ pub struct Measurement {
 
 /// Reads sensor `opts.sensor` (the first when `None`): renders it with `opts` and reduces the
 /// film to one value per channel with its standard error.
-pub fn measure(scene: &Scene, opts: &RenderOptions) -> Result<Measurement, RenderError> {
+pub fn measure(job: &Job, opts: &RenderOptions) -> Result<Measurement, RenderError> {
     let sensor = opts.sensor.unwrap_or(0);
-    let out = render(scene, opts)?;
+    let out = render(job, opts)?;
     // `render` has checked the index
-    let quantity = scene.sensors[sensor].quantity();
+    let quantity = job.scene.sensors[sensor].quantity();
     Ok(Measurement::from_render(&out, sensor, quantity))
 }
 
@@ -76,7 +75,6 @@ impl Measurement {
 mod tests {
     use super::*;
     use crate::film::{BoxFilter, Film, ReconstructionFilter};
-    use crate::integrator::RenderOutput;
     use glam::{UVec2, Vec2};
     use std::time::Duration;
 
@@ -96,6 +94,7 @@ mod tests {
         film.merge(&block);
         let out = RenderOutput {
             film,
+            quantity: crate::render::PixelQuantity::Sensor,
             branches: Some(3),
             pilot: None,
             spp: 2,

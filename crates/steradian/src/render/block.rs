@@ -1,0 +1,114 @@
+//! One work item rendered into an image block: every sample of its pixels and sample range,
+//! estimated by the integrator and splatted through the film's reconstruction filter.
+//! Samples whose value is NaN or infinite are dropped and counted, never splatted.
+
+use glam::{UVec2, Vec2};
+
+use super::options::{PixelQuantity, Plan};
+use super::schedule::WorkItem;
+use crate::film::{ImageBlock, ReconstructionFilter};
+use crate::integrator::{estimate_irradiance, Integrator};
+use crate::sampling::{PixelSampler, Sampler};
+use crate::scene::Scene;
+use crate::sensor::{film_position, Sensor, SensorKind};
+use crate::Spectrum;
+
+/// Renders work items of one plan; shared by all worker threads.
+pub(super) struct BlockRenderer<'a> {
+    pub scene: &'a Scene,
+    /// The integrator with its branch count resolved.
+    pub integrator: &'a Integrator,
+    pub sensor: &'a Sensor,
+    pub sampler: Sampler,
+    pub quantity: PixelQuantity,
+    pub meter: bool,
+    pub filter: ReconstructionFilter,
+    pub width: u32,
+    pub height: u32,
+}
+
+/// A rendered work item.
+pub(super) struct RenderedBlock {
+    pub block: ImageBlock,
+    /// Samples dropped for a NaN or infinite value.
+    pub dropped: u64,
+}
+
+impl<'a> BlockRenderer<'a> {
+    pub fn new(scene: &'a Scene, integrator: &'a Integrator, plan: &Plan<'a>) -> Self {
+        BlockRenderer {
+            scene,
+            integrator,
+            sensor: plan.sensor,
+            sampler: plan.sampler,
+            quantity: plan.quantity,
+            meter: plan.meter,
+            filter: plan.film.filter,
+            width: plan.film.width,
+            height: plan.film.height,
+        }
+    }
+
+    /// The item's block, or `None` when `cancelled` turns true before it is finished (checked
+    /// once per pixel row).
+    pub fn render(&self, item: &WorkItem, cancelled: impl Fn() -> bool) -> Option<RenderedBlock> {
+        let WorkItem { offset, size, s0, s1 } = *item;
+        let (width, height) = (self.width, self.height);
+        // blocks as `Film::create_block` makes them (the film itself is borrowed for merging)
+        let mut block =
+            ImageBlock::with_clip(offset, size, &self.filter, [width as i64, height as i64]);
+        let mut dropped = 0u64;
+        for y in offset.y..offset.y + size.y {
+            if cancelled() {
+                return None;
+            }
+            for x in offset.x..offset.x + size.x {
+                let pixel = UVec2::new(x, y);
+                for index in s0..s1 {
+                    let mut s = self.sampler.pixel_sampler(pixel, width, index);
+                    let (mut pos, film_uv) = film_position(pixel, &mut s, width, height);
+                    let l = match self.quantity {
+                        PixelQuantity::Sensor => self.sensor_value(film_uv, &mut s),
+                        PixelQuantity::SurfaceIrradiance | PixelQuantity::SurfaceIlluminance => {
+                            self.surface_irradiance(film_uv, &mut s)
+                        }
+                    };
+                    if self.meter {
+                        // meters ignore the film position: equal weights
+                        pos = pixel.as_vec2() + Vec2::splat(0.5);
+                    }
+                    if l.is_finite() {
+                        block.put(pos, l);
+                    } else {
+                        dropped += 1;
+                    }
+                }
+            }
+        }
+        Some(RenderedBlock { block, dropped })
+    }
+
+    /// One sample of the sensor's measurement at film position `film_uv ∈ [0,1]²`: for cameras
+    /// the radiance arriving along the ray through that position, for meters their quantity
+    /// (film position plays no part).
+    #[inline]
+    fn sensor_value(&self, film_uv: Vec2, s: &mut PixelSampler) -> Spectrum {
+        let scene = self.scene;
+        if let SensorKind::IrradianceMeter(m) = &self.sensor.kind {
+            let ps = scene.shapes[m.shape as usize].sample_position(s.next_2d());
+            return estimate_irradiance(scene, self.integrator, ps.p, ps.n, s);
+        }
+        match self.sensor.start_ray(film_uv, s) {
+            Some(ray) => self.integrator.li(scene, &ray, s),
+            None => Spectrum::ZERO,
+        }
+    }
+
+    /// Irradiance on the surface seen through film position `film_uv`, on the camera's side.
+    fn surface_irradiance(&self, film_uv: Vec2, s: &mut PixelSampler) -> Spectrum {
+        let Some(ray) = self.sensor.camera_ray(film_uv, s) else { return Spectrum::ZERO };
+        let Some(si) = self.scene.intersect(&ray) else { return Spectrum::ZERO };
+        let n = if si.n.dot(ray.d) < 0.0 { si.n } else { -si.n };
+        estimate_irradiance(self.scene, self.integrator, si.p, n, s)
+    }
+}

@@ -174,7 +174,8 @@ impl PixelSampler {
     /// are left to the 1-D draws that follow). Why not (2, 3) of the current block: that pair
     /// is only a (1, 2)-sequence (two points in some elementary intervals, none in others);
     /// drawing every 2-D point from (0, 1) lowered relMSE at equal samples by 10 % on veach,
-    /// whose glossy plates' BSDF samples had come from (2, 3), and 3.5 % on cornell.
+    /// whose glossy plates' BSDF samples had come from (2, 3), and 3.5 % on cornell (16 spp,
+    /// mean of 4 seeds, 2026-12-01).
     #[inline]
     pub fn next_2d(&mut self) -> Vec2 {
         match self.kind {

@@ -197,8 +197,8 @@ mod tests {
 
     /// Stratification of the 256 samples of a pixel: every 2-D draw is a (0, 8, 2)-net (one
     /// point in each elementary interval of area 1/256: 256×1, 128×2, …, 1×256 cells), and
-    /// each 1-D draw alone a (0, 8, 1)-net. Regression: a 2-D draw after a 1-D one used to
-    /// come from dimensions (2, 3), only a (1, 8, 2)-net (cells of 32×8 held 0 to 2 points).
+    /// each 1-D draw alone a (0, 8, 1)-net. It fails if a 2-D draw after a 1-D one comes from
+    /// dimensions (2, 3), only a (1, 8, 2)-net (cells of 32×8 hold 0 to 2 points).
     /// Independent samples would leave about a third of the 16×16 cells empty.
     #[test]
     fn sobol_pixel_samples_are_stratified() {

@@ -19,7 +19,7 @@
 # The benchmark scenes (cornell, materials, veach) are deliberately not in the training set.
 # The optimisation changes code layout, inlining and branch order, never floating-point
 # operations: the images are bit for bit those of `cargo build --release`. Measured gain:
-# benches/README.md (session 11). Honours RUSTFLAGS (default: target-cpu=native, as
+# benches/README.md ("Profile-guided build"). Honours RUSTFLAGS (default: target-cpu=native, as
 # .cargo/config.toml, which RUSTFLAGS replaces).
 set -euo pipefail
 cd "$(dirname "$0")/.."

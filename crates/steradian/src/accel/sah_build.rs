@@ -7,7 +7,8 @@
 //! costs as much as one of 8, they are stored 4 to a packet), as Embree does. Traversal tests a
 //! leaf's packets in pairs, 8 lanes at a time (`simd.rs`), but costing leaves by pairs (blocks
 //! of 8) did not change render times on the reference scenes (cornell +0.5 %, materials
-//! −3.2 %, veach +0.1 %, within noise; session 9), so the cost stays that of 4-triangle packets.
+//! −3.2 %, veach +0.1 %, within noise; 2026-12-02, AMD EPYC, 2 cores), so the cost stays that
+//! of 4-triangle packets.
 
 use glam::Vec3;
 use rayon::prelude::*;
@@ -240,7 +241,8 @@ fn refined_leaf(
     // Only leaves that hold several shapes are refined: those are separate objects the SAH put
     // together (cornell's walls, materials' spheres). The triangles of one mesh in a leaf are a
     // compact patch; refining those too made sphere1m's BVH build 1.3–1.5× longer and its
-    // shadow rays 0.67–0.72 of Embree's speed instead of 0.99 (benches/embree, 2 threads).
+    // shadow rays 0.67–0.72 of Embree's speed instead of 0.99 (benches/embree, 2 threads;
+    // 2026-12-02, AMD EPYC, 2 cores).
     //
     // A refinement is kept where it lowers the expected number of tests (surface area ×
     // packets or analytic primitives; the node visit is free). One that needs more triangle

@@ -300,9 +300,9 @@ fn empty_scenes_and_single_shapes() {
     }
 }
 
-/// Regression: two spheres side by side shared one leaf (the SAH priced their split at a node
-/// visit), so every ray that reached either tested both, although the root node had child
-/// slots to spare. Leaves of several shapes now split into free slots.
+/// Two spheres side by side must not share one leaf where the root node has child slots to
+/// spare: the SAH prices their split at a node visit and keeps them together, so every ray
+/// that reached either would test both. Leaves of several shapes split into free slots.
 #[test]
 fn separate_shapes_take_free_child_slots() {
     let floor = Transform::scale(Vec3::splat(8.0))

@@ -10,8 +10,8 @@
 //! dominate where it is close). It is not the default because it can lose badly where a
 //! glossy surface mirrors dim lights: on Veach's MIS scene (equal-flux small lights, one light
 //! 200× brighter) at 64 spp pure flux selection gives relMSE 0.058, the mixture 0.0040 and the
-//! uniform rule 0.0031 (two seeds each). Whatever the rule, the estimator divides by the
-//! probability, so it stays unbiased.
+//! uniform rule 0.0031 (two seeds each, 2026-11-22). Whatever the rule, the estimator divides
+//! by the probability, so it stays unbiased.
 
 use super::Emitter;
 use crate::geometry::Aabb;

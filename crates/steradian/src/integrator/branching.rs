@@ -1,55 +1,32 @@
 //! How many paths continue from each camera ray's first hit, when the scene leaves `path`'s
-//! `branches` unset: the splitting factor that gives the least noise per unit of work, chosen
-//! by a short pilot before the render.
+//! `branches` unset: the splitting factor with the least noise per unit of work, chosen by a
+//! short pilot before the render.
 //!
-//! Splitting a camera sample into N branches at its first hit costs C(N) = C₁ + N·C₂ (C₁: the
-//! camera ray, its intersection and the film splat; C₂: one branch) and leaves a pixel with
-//! some variance V(N); the render's efficiency is 1/(V(N)·C(N)). With i.i.d. numbers
-//! V(N) = V_b + V_w/N (V_b: the variance of what the first hit alone decides, such as where in
-//! the pixel the ray lands; V_w: that of one branch given the first hit), and the product is
-//! least at N* = √(C₁·V_w / (C₂·V_b)) (Arvo and Kirk, "Particle transport and image synthesis",
-//! SIGGRAPH 1990; Rath et al., "EARS", SIGGRAPH 2022, learn the same factor per region).
+//! **Model.** N branches cost C(N) = C₁ + N·C₂ per camera sample (C₁: camera ray, first hit and
+//! film splat; C₂: one branch) and leave a variance V(N) = V_b + V_w/N (V_b: what the first hit
+//! decides; V_w: one branch given the first hit); V·C is least at N* = √(C₁·V_w / (C₂·V_b))
+//! (Arvo and Kirk 1990; Rath et al., "EARS", 2022).
 //!
-//! The render does not use i.i.d. numbers, though: a pixel's camera samples are one stratified
-//! Sobol set, and its N·spp branches another (`sampling/sampler.rs`). Stratification removes
-//! most of V_b (pixel edges, first hits), so the best N is larger than N* from i.i.d. samples:
-//! an earlier pilot built that way chose 3 branches for the Cornell box, where 16 reach the
-//! same true error in 26 % less time at 64 spp. So this pilot renders as the render does:
-//! - 256 pixels drawn at random over the film (every pixel of a smaller film, the one pixel
-//!   of a radiance meter), each rendered with N = 1, 2, 4, 8 and 16 branches, every time in R independent
-//!   replicates of S camera samples (the render's sampler, seeded apart from the render, never
-//!   put on the film; R = 8, or more on films with few pixels);
-//! - V(N): the variance of a replicate's pixel value over the replicates, times S (one camera
-//!   sample's worth), summed over pixels with weights 1/(μ² + ε), μ the pixel's mean over all
-//!   its replicates and ε = 10⁻² × the film's mean squared: relative error, what noise looks
-//!   like, without letting black pixels dominate. Values above the 99.9th percentile of the
-//!   pilot's values (first-hit emission and branch values alike) are clamped first, so that a
-//!   few fireflies do not decide alone;
-//! - C(N): rays traced per camera sample (closest-hit and shadow rays alike), plus
-//!   [`CAMERA_SAMPLE_COST`] rays' worth for generating a camera ray and splatting its value.
-//!   A count, not a clock, so that the choice (and the image) is the same on every run;
-//! - V(N) = V_b + V_w/N and C(N) = C₁ + N·C₂ are fitted to the five candidates (see
-//!   [`best_count`]) and the candidate with the least modelled V·C is chosen. Fitting pools
-//!   the candidates' noise; powers of two keep N·spp a power of two, where Sobol points are
-//!   best stratified.
+//! **Pilot.** Stratified camera samples and branches (`sampling/sampler.rs`) remove most of V_b,
+//! so V and C are measured as the render makes them:
+//! - up to 256 pixels at random over the film (all of a smaller film) are rendered with each of
+//!   [`CANDIDATES`] in R replicates of S camera samples (the render's sampler, seeded apart,
+//!   never put on the film; R = 8, more on films of fewer than 128 pixels);
+//! - V(N) = S × the variance between replicates, summed over pixels with weights 1/(μ² + ε),
+//!   μ the pixel's mean and ε = 10⁻² × the film's mean squared, after clamping values above the
+//!   99.9th percentile; C(N) = rays traced per camera sample + [`CAMERA_SAMPLE_COST`], a count,
+//!   not a clock, so that the choice and the image are the same on every run;
+//! - the model is fitted to the five candidates ([`best_count`]) and the least modelled V·C
+//!   wins (powers of two keep N·spp a power of two, where Sobol points stratify best). S is the
+//!   largest power of two up to min(spp, 16) that keeps the pilot within 1/4 of a one-branch
+//!   render's work; renders too small for S = 1 and irradiance meters get
+//!   [`DEFAULT_BRANCHES`](super::DEFAULT_BRANCHES).
 //!
-//! S is the largest power of two up to min(spp, 16) for which the pilot's work (Σ(1 + N) = 36
-//! paths per pixel, replicate and sample) stays within 1/4 of a one-branch render's (at most
-//! 1.7 % of a 256 × 256, 64-spp render with 16 branches); a render too small for S = 1 gets
-//! [`DEFAULT_BRANCHES`](super::DEFAULT_BRANCHES).
-//!
-//! Choices on the reference scenes at 64 spp, seeds 0–3: cornell, materials, veach, plastics
-//! and furnace 16 at every seed; textures 16, 8, 4, 4 (textured first hits); pointlight 8, 4,
-//! 16, 2 (most of its error at 16 branches is on edges, which few of the 256 pixels hit, so
-//! its choice is noisy: at 64 spp, 16 branches take 1.7× the time 4 do for the same error).
-//! Where the light after the first hit is noisy, V_b comes out near zero or below it: at 16
-//! stratified camera samples per pixel little is left of what the first hit decides. Against
-//! the pilot that took V_b from i.i.d. samples (cornell 3, materials 11, veach 7), equal-time
-//! error at 16 spp (user-s × relative variance from the spread between 3 seeds, so no
-//! reference noise) falls by 26 % on cornell (3.80 → 2.83) and is within noise on materials
-//! (2.62 → 2.62) and veach (9.40 → 9.89). A point light with
-//! `max_depth` = 2, whose light after the first hit has no noise at all, gets 1, where
-//! 4 branches would take 2.2× the time for the same image.
+//! Decisions (2026-12-02, AMD EPYC, 2 cores; `docs/design/2026-12-02-branching-pilot.md`):
+//! - Sobol replicates, not i.i.d. samples (which overstate V_b): equal-time error at 16 spp
+//!   −26 % on cornell (3 → 16 branches), within noise on materials and veach.
+//! - Random pixels, not a grid, which missed the edges: the point-light scene holds 80 % of its
+//!   error at 16 branches on 1 % of its pixels.
 
 use glam::UVec2;
 use rayon::prelude::*;
@@ -63,8 +40,8 @@ use crate::spectrum::luminance;
 use crate::Spectrum;
 
 /// Rays' worth of work for making a camera ray and splatting its value on the film (filter
-/// weights over up to 5 × 5 pixels): measured on a Cornell box, where these take about as long as
-/// tracing and shading one ray.
+/// weights over up to 5 × 5 pixels): on a Cornell box these take about as long as tracing and
+/// shading one ray (measured 2026-12-01, AMD EPYC, 2 cores).
 pub const CAMERA_SAMPLE_COST: f64 = 1.0;
 
 /// The counts the pilot tries, in increasing order.
@@ -75,7 +52,7 @@ pub const MAX_AUTO_BRANCHES: u32 = CANDIDATES[CANDIDATES.len() - 1];
 
 /// Pixels of the pilot, at most: drawn at random over the film (a regular grid would miss
 /// the edges, which hold most of what the first hit decides: 80 % of the point-light
-/// scene's error at 16 branches sits on 1 % of its pixels).
+/// scene's error at 16 branches sits on 1 % of its pixels, measured 2026-12-02).
 const PILOT_PIXELS: u32 = 256;
 
 /// Replicates per pilot pixel, at least; films with fewer than [`PILOT_UNITS`] pixels (a

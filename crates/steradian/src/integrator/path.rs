@@ -9,74 +9,34 @@
 //! | `light_selection` | string | `uniform` | steradian's own: `uniform` or `power` (see `emitter/light_selection.rs`) |
 //! | `branches`      | integer | chosen  | steradian's own: paths continued from each camera ray's first hit (1 to 64; 1 = Mitsuba's estimator); unset, a pilot chooses 1, 2, 4, 8 or 16 (`branching.rs`) |
 //!
-//! At every vertex with a non-delta BSDF one light is chosen uniformly and sampled (next-event
-//! estimation), and the BSDF is sampled to continue the path; both estimators of emitted light
-//! are combined by multiple importance sampling with the power heuristic, as in Mitsuba 3.
-//! Russian roulette continues with probability q = min(κ·max(β)·η², 0.95) and divides the
-//! throughput β by q, so the estimator stays unbiased.
+//! **Estimator.** At every vertex with a non-delta BSDF one light is chosen (`light_selection`)
+//! and sampled (next-event estimation), and the BSDF is sampled to continue the path; the two
+//! are combined by MIS with the power heuristic, as in Mitsuba 3. Past `rr_depth`, **Russian
+//! roulette** keeps a path with probability q = min(κ·max(β)·η², 0.95) and divides β by q
+//! (unbiased; the cap ends paths even where β never falls).
 //!
-//! **Russian roulette.** Mitsuba uses κ = 1: a path whose throughput has fallen to β survives
-//! with probability β, and the survivors carry weight ≈ 1. Each path a roulette ends saves the
-//! work of its remaining vertices but adds variance β²·E[X²]·(1 − q)/q (X: the light the rest
-//! of the path would gather); the best q balances the two, q* ∝ β·√(E[X²]·T / (C·V)) (Arvo and
-//! Kirk 1990; Rath et al. 2022 learn it per region), with T and V the cost and variance of a
-//! whole sample and C the cost of the rest of the path. A path's rest is short against a
-//! whole sample of `branches` paths, so q* is several times β. steradian's default is κ = 4:
-//! roulette ends only paths whose throughput is below 0.24. Measured at 16 spp over 3 seeds
-//! (relative variance between seeds, so no reference noise; single-thread time, median of 5
-//! alternating runs; κ = 2 was run without the 0.95 cap, "no roulette" has its time from
-//! κ = 1000), against κ = 1:
+//! **Splitting.** Each camera sample is split at its first hit into `branches` independent
+//! paths (each with its own light sample, BSDF sample and roulette) whose mean is an unbiased
+//! estimate of the light leaving that hit; a pixel's branches draw from one stratified set of
+//! `branches × spp` Sobol points, and `spp` counts camera samples, as in Mitsuba.
 //!
-//! | κ | 1 | 2 | 3 | 4 | 8 | no roulette |
-//! |---|---:|---:|---:|---:|---:|---:|
-//! | cornell relative variance | 2.353e-4 | 2.164e-4 | 1.563e-4 | 1.553e-4 | 1.543e-4 | 1.534e-4 |
-//! | cornell time | 1 | | | 1.077 | 1.130 | 1.208 (κ = 1000) |
-//! | materials relative variance | 3.091e-4 | 2.677e-4 | 2.582e-4 | 2.555e-4 | 2.538e-4 | 2.510e-4 |
-//! | materials time | 1 | | | 1.008 | 1.009 | 1.023 (κ = 1000) |
+//! **The last vertex** (one segment left): where light sampling alone has bounded weights
+//! ([`Scene::light_sampling_suffices`]: only delta lights; or a Lambertian vertex under spheres
+//! seen from outside, rectangles at least √area away and delta lights), the light sample takes
+//! MIS weight 1 and the BSDF sample, which could only find an emitter, is skipped.
 //!
-//! so κ = 4 reaches the same error in 0.71× the time on the Cornell box (whose white walls
-//! reflect 89 % of red light: a fifth bounce still carries much of it) and 0.83× on the
-//! material spheres; the optimum is broad (3 to 8). At 64 spp the gain is smaller: cornell's
-//! relative variance falls from 3.902e-5 to 3.436e-5 (3 seeds) at 1.036× the CPU time
-//! (equal-time error 0.91×), because Sobol points stratify the roulette's decisions too, so
-//! the noise it adds falls faster than 1/spp. The 0.95 cap stays, so every path ends with
-//! probability 1 even where β never falls (a white furnace, chains of smooth glass).
-//!
-//! **Splitting at the first hit.** A camera sample traces its ray to the first surface once,
-//! counts the light emitted there once, then continues from that point into `branches`
-//! independent paths (each with its own next-event estimate, BSDF sample and roulette) and
-//! averages them. Each branch is an unbiased estimate of the light leaving the first hit, so
-//! the average is too, and the image's expectation is Mitsuba's; only the noise changes. The
-//! camera ray, the first intersection and the film splat are paid once per `branches` paths,
-//! and the branches of a pixel draw their numbers from one stratified set of
-//! `branches × spp` Sobol points. Most of an image's noise comes after the first hit (in the
-//! Cornell box, 98 % of relMSE at 64 spp is indirect light), so this buys more than the same
-//! time spent on more camera samples: at equal time, relMSE against Mitsuba's references
-//! falls by 1.4× (cornell), 1.6× (materials) and 1.9× (veach) with 4 branches against 1
-//! (measured, benches/README.md). A sample costs more, and where the light after the first hit
-//! has little noise (direct light from point sources with `max_depth` = 2, for one) splitting
-//! only adds work; so when the scene does not set `branches`, a pilot before the render
-//! measures both sides and picks the count with the least noise per unit of work
-//! (`branching.rs`). `spp` keeps Mitsuba's meaning: camera samples per pixel.
-//!
-//! **The last vertex.** From the vertex after which `max_depth` allows one more segment, the
-//! BSDF sample and its ray serve only to find an emitter (MIS's second strategy); nothing
-//! continues from there. Where light sampling alone is good, steradian leaves them out and
-//! gives the light sample MIS weight 1 (one strategy instead of two: still unbiased):
-//! - in scenes whose lights are all delta lights (point, spot, directional), at every BSDF:
-//!   no ray can hit an emitter, so the BSDF sample never finds light;
-//! - at Lambertian vertices (`diffuse`), when every light of the scene is a sphere seen from
-//!   outside, a rectangle at least √area away, or a delta light
-//!   ([`Scene::light_sampling_suffices`]): then each light sample's weight (radiance × cosine /
-//!   density) is bounded, so light sampling alone has no fireflies, and MIS's BSDF sample
-//!   would add a ray for almost no weight.
-//!
-//! Glossy and specular vertices, other light shapes (area-sampled meshes, disks, cylinders,
-//! where 1/d² is unbounded near the light), environments and unbounded `max_depth` keep MIS.
-//! On Veach's MIS scene (`max_depth` 3, sphere lights, diffuse walls) the render is 6.5 %
-//! faster (single thread, 8 spp, median of 7 alternating runs; other runs gave 2–13 %) at the
-//! same relative variance (6.362e-4 against 6.361e-4, 4 seeds); with `max_depth` 2 (direct
-//! light only) 15.5 % faster.
+//! Decisions (measurements in `docs/design/`):
+//! - κ = 4, not Mitsuba's 1: a path's rest is cheap against a sample of `branches` paths, so the
+//!   best survival probability is several times β (Arvo and Kirk 1990); equal-time error 0.71×
+//!   (cornell) and 0.83× (materials) at 16 spp, 0.91× (cornell) at 64 spp (2026-12-02, AMD EPYC,
+//!   2 cores; `2026-12-02-russian-roulette.md`).
+//! - Splitting: 98 % of cornell's relMSE at 64 spp arises after the first hit; 4 branches against
+//!   1 lower equal-time relMSE 1.4× (cornell), 1.6× (materials), 1.9× (veach) (2026-12-01, AMD
+//!   EPYC, 2 cores; `2026-12-01-splitting-at-the-first-hit.md`). Where that light has little
+//!   noise splitting only adds work, so unset `branches` is chosen by a pilot (`branching.rs`).
+//! - Light sampling alone at the last vertex: veach (`max_depth` 3) 6.5 % less time at the same
+//!   relative variance, 15.5 % at `max_depth` 2 (2026-12-02, AMD EPYC, 2 cores;
+//!   `2026-12-02-last-vertex.md`).
 
 use glam::Vec3;
 
@@ -444,7 +404,7 @@ impl PathTracer {
         // a BSDF samples unit directions (the χ² harness of every BSDF checks |wi| = 1 to 10⁻⁵)
         // and the shading frame is orthonormal, so wi is not renormalised: a square root and a
         // division fewer on the chain from one hit to the next ray (cornell and materials 7 %
-        // faster, the image the same up to rounding)
+        // faster, images equal up to rounding; 2026-12-02, Intel Xeon with AVX-512, 2 cores)
         st.ray = si.spawn_ray(si.to_world(bs.wi));
         st.depth += 1;
 

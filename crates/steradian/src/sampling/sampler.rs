@@ -174,7 +174,8 @@ impl PixelSampler {
     /// are left to the 1-D draws that follow). Why not (2, 3) of the current block: that pair
     /// is only a (1, 2)-sequence (two points in some elementary intervals, none in others);
     /// drawing every 2-D point from (0, 1) lowered relMSE at equal samples by 10 % on veach,
-    /// whose glossy plates' BSDF samples had come from (2, 3), and 3.5 % on cornell.
+    /// whose glossy plates' BSDF samples had come from (2, 3), and 3.5 % on cornell (16 spp,
+    /// mean of 4 seeds, 2026-12-01).
     #[inline]
     pub fn next_2d(&mut self) -> Vec2 {
         match self.kind {
@@ -196,8 +197,8 @@ mod tests {
 
     /// Stratification of the 256 samples of a pixel: every 2-D draw is a (0, 8, 2)-net (one
     /// point in each elementary interval of area 1/256: 256×1, 128×2, …, 1×256 cells), and
-    /// each 1-D draw alone a (0, 8, 1)-net. Regression: a 2-D draw after a 1-D one used to
-    /// come from dimensions (2, 3), only a (1, 8, 2)-net (cells of 32×8 held 0 to 2 points).
+    /// each 1-D draw alone a (0, 8, 1)-net. It fails if a 2-D draw after a 1-D one comes from
+    /// dimensions (2, 3), only a (1, 8, 2)-net (cells of 32×8 hold 0 to 2 points).
     /// Independent samples would leave about a third of the 16×16 cells empty.
     #[test]
     fn sobol_pixel_samples_are_stratified() {

@@ -16,7 +16,7 @@
 //!   evaluates `exp` by range reduction to 2ⁿ·2^f and a degree-6 polynomial for 2^f on
 //!   [−½, ½] (relative error below 10⁻⁶, a few f32 ulps, over the default filter's range;
 //!   the weights are only ever used relative to their sum); `libm`'s `expf` was 2 % of a
-//!   Cornell-box render.
+//!   Cornell-box render (2026-12-01, AMD EPYC, 2 cores).
 //! - `stddev` must be positive and finite, with 4σ at most
 //!   [`MAX_FILTER_RADIUS`](super::MAX_FILTER_RADIUS) pixels.
 

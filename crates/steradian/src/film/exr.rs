@@ -10,7 +10,7 @@ use ::exr::prelude::{
     f16, AnyChannel, AnyChannels, FlatSamples, Image as ExrImage, SmallVec, WritableImage,
 };
 
-use super::film::ComponentFormat;
+use super::hdrfilm::ComponentFormat;
 use super::image::Image;
 
 /// Writes `image` as float32 RGB (channels R, G, B).

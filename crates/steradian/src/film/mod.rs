@@ -3,9 +3,8 @@
 
 pub mod exr;
 pub mod falsecolor;
-#[allow(clippy::module_inception)]
-mod film;
 pub mod filter;
+mod hdrfilm;
 mod image;
 mod image_block;
 pub mod png;
@@ -13,7 +12,7 @@ pub mod png;
 pub use self::exr::{read_exr, write_exr, write_exr_layers, write_exr_layers_as};
 pub use self::png::{encode_png_rgb8, read_png_rgb8, srgb_encode_u8, write_png};
 pub use falsecolor::{false_color, false_color_png};
-pub use film::{ComponentFormat, Film, MAX_FILM_SIZE};
 pub use filter::{BoxFilter, GaussianFilter, ReconstructionFilter, TentFilter};
+pub use hdrfilm::{ComponentFormat, Film, MAX_FILM_SIZE};
 pub use image::{mse, rel_mse, Image};
 pub use image_block::{ImageBlock, PixelAccum};

@@ -1,5 +1,5 @@
 //! The film: reconstruction filters, per-thread image blocks with f64 accumulation, developed
-//! images, image metrics, and EXR/PNG input/output.
+//! images, image metrics (Mitsuba's Z-test among them), and EXR/PNG input/output.
 
 pub mod exr;
 pub mod falsecolor;
@@ -8,6 +8,7 @@ mod hdrfilm;
 mod image;
 mod image_block;
 pub mod png;
+mod ztest;
 
 pub use self::exr::{read_exr, write_exr, write_exr_layers, write_exr_layers_as};
 pub use self::png::{encode_png_rgb8, read_png_rgb8, srgb_encode_u8, write_png};
@@ -16,3 +17,4 @@ pub use filter::{BoxFilter, GaussianFilter, ReconstructionFilter, TentFilter};
 pub use hdrfilm::{ComponentFormat, Film, MAX_FILM_SIZE};
 pub use image::{mse, rel_mse, Image};
 pub use image_block::{ImageBlock, PixelAccum};
+pub use ztest::{erfc, z_test, ZTest, ZTEST_ALPHA, ZTEST_MIN_VARIANCE, ZTEST_PASS_FRACTION};

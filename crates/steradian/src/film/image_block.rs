@@ -48,10 +48,11 @@ impl PixelAccum {
         self.w2 += o.w2;
     }
 
-    /// The weighted mean `Σw·L / Σw` (0 when `Σw = 0`).
+    /// The weighted mean `Σw·L / Σw` (0 when `Σw = 0`; filters with negative lobes can leave
+    /// `Σw < 0` in a pixel with few samples, which is divided as Mitsuba divides it).
     #[inline]
     pub fn mean(&self) -> [f64; 3] {
-        if self.w > 0.0 {
+        if self.w != 0.0 {
             self.wl.map(|s| s / self.w)
         } else {
             [0.0; 3]

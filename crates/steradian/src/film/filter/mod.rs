@@ -1,4 +1,5 @@
-//! Reconstruction filters (Mitsuba `rfilter` plugins): `box`, `tent`, `gaussian`.
+//! Reconstruction filters (Mitsuba `rfilter` plugins): `box`, `tent`, `gaussian`, `mitchell`,
+//! `catmullrom`, `lanczos`.
 //!
 //! A filter is a 1D weight function `w(x)` of the offset `x` (pixels) between a sample and a pixel
 //! centre, zero at and beyond its [`radius`](ReconstructionFilter::radius). Films use it
@@ -6,15 +7,22 @@
 //! `w(c.x − p.x)·w(c.y − p.y)`, and each pixel is developed as `Σw·L / Σw`.
 //!
 //! The set of filters is closed (an enum, no trait objects). Every filter is symmetric,
-//! `w(−x) = w(x)`, and non-negative.
+//! `w(−x) = w(x)`; `box`, `tent` and `gaussian` are non-negative, the cubics and `lanczos`
+//! have negative lobes, which the films' `Σw·L / Σw` divides out as Mitsuba's does.
 
 #[path = "box.rs"]
 mod box_filter;
+mod catmullrom;
 mod gaussian;
+mod lanczos;
+mod mitchell;
 mod tent;
 
 pub use box_filter::BoxFilter;
+pub use catmullrom::CatmullRomFilter;
 pub use gaussian::GaussianFilter;
+pub use lanczos::LanczosFilter;
+pub use mitchell::MitchellFilter;
 pub use tent::TentFilter;
 
 /// Largest filter radius accepted, in pixels. Bounds the per-axis footprint so that splatting
@@ -47,6 +55,9 @@ pub enum ReconstructionFilter {
     Box(BoxFilter),
     Tent(TentFilter),
     Gaussian(GaussianFilter),
+    Mitchell(MitchellFilter),
+    CatmullRom(CatmullRomFilter),
+    Lanczos(LanczosFilter),
 }
 
 impl ReconstructionFilter {
@@ -57,6 +68,9 @@ impl ReconstructionFilter {
             ReconstructionFilter::Box(f) => f.radius(),
             ReconstructionFilter::Tent(f) => f.radius(),
             ReconstructionFilter::Gaussian(f) => f.radius(),
+            ReconstructionFilter::Mitchell(f) => f.radius(),
+            ReconstructionFilter::CatmullRom(f) => f.radius(),
+            ReconstructionFilter::Lanczos(f) => f.radius(),
         }
     }
 
@@ -67,6 +81,9 @@ impl ReconstructionFilter {
             ReconstructionFilter::Box(f) => f.eval(x),
             ReconstructionFilter::Tent(f) => f.eval(x),
             ReconstructionFilter::Gaussian(f) => f.eval(x),
+            ReconstructionFilter::Mitchell(f) => f.eval(x),
+            ReconstructionFilter::CatmullRom(f) => f.eval(x),
+            ReconstructionFilter::Lanczos(f) => f.eval(x),
         }
     }
 
@@ -84,6 +101,15 @@ impl ReconstructionFilter {
             }
             ReconstructionFilter::Gaussian(f) => {
                 xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval_inside(*x) } else { 0.0 })
+            }
+            ReconstructionFilter::Mitchell(f) => {
+                xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval(*x) } else { 0.0 })
+            }
+            ReconstructionFilter::CatmullRom(f) => {
+                xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval(*x) } else { 0.0 })
+            }
+            ReconstructionFilter::Lanczos(f) => {
+                xs.iter_mut().for_each(|x| *x = if x.abs() < r { f.eval(*x) } else { 0.0 })
             }
         }
     }
@@ -113,6 +139,9 @@ impl ReconstructionFilter {
             ReconstructionFilter::Box(_) => "box",
             ReconstructionFilter::Tent(_) => "tent",
             ReconstructionFilter::Gaussian(_) => "gaussian",
+            ReconstructionFilter::Mitchell(_) => "mitchell",
+            ReconstructionFilter::CatmullRom(_) => "catmullrom",
+            ReconstructionFilter::Lanczos(_) => "lanczos",
         }
     }
 }
@@ -139,6 +168,21 @@ impl From<GaussianFilter> for ReconstructionFilter {
         ReconstructionFilter::Gaussian(f)
     }
 }
+impl From<MitchellFilter> for ReconstructionFilter {
+    fn from(f: MitchellFilter) -> Self {
+        ReconstructionFilter::Mitchell(f)
+    }
+}
+impl From<CatmullRomFilter> for ReconstructionFilter {
+    fn from(f: CatmullRomFilter) -> Self {
+        ReconstructionFilter::CatmullRom(f)
+    }
+}
+impl From<LanczosFilter> for ReconstructionFilter {
+    fn from(f: LanczosFilter) -> Self {
+        ReconstructionFilter::Lanczos(f)
+    }
+}
 
 #[cfg(test)]
 mod tests {
@@ -151,6 +195,11 @@ mod tests {
             TentFilter::new(1.7).unwrap().into(),
             GaussianFilter::default().into(),
             GaussianFilter::new(0.8).unwrap().into(),
+            MitchellFilter::default().into(),
+            MitchellFilter::new(0.0, 0.8).unwrap().into(),
+            CatmullRomFilter::new().into(),
+            LanczosFilter::default().into(),
+            LanczosFilter::new(2).unwrap().into(),
         ]
     }
 
@@ -198,13 +247,19 @@ mod tests {
     }
 
     #[test]
-    fn filters_are_symmetric_and_nonnegative() {
+    fn filters_are_symmetric_and_zero_beyond_the_radius() {
         for f in all_filters() {
             for i in 0..=400 {
                 let x = i as f32 * 0.0137;
                 let (a, b) = (f.eval(x), f.eval(-x));
                 assert_eq!(a, b, "{} at ±{x}", f.plugin_name());
-                assert!(a >= 0.0);
+                let has_negative_lobes = matches!(
+                    f,
+                    ReconstructionFilter::Mitchell(_)
+                        | ReconstructionFilter::CatmullRom(_)
+                        | ReconstructionFilter::Lanczos(_)
+                );
+                assert!(a >= 0.0 || has_negative_lobes, "{} at {x}", f.plugin_name());
                 if x >= f.radius() && !f.is_box() {
                     assert_eq!(a, 0.0);
                 }
@@ -212,8 +267,47 @@ mod tests {
         }
     }
 
+    /// Weights of Mitsuba 3.9.1's `eval` (scalar_rgb) at x = 0, 0.1, 0.25, 0.5, 0.77, 1, 1.3,
+    /// 1.9, 2.5 pixels.
+    #[test]
+    fn cubic_and_lanczos_values_match_mitsuba() {
+        let xs = [0.0f32, 0.1, 0.25, 0.5, 0.77, 1.0, 1.3, 1.9, 2.5];
+        let cases: [(ReconstructionFilter, [f32; 9]); 3] = [
+            (
+                MitchellFilter::default().into(),
+                [
+                    0.888889, 0.870056, 0.782118, 0.534722, 0.235711, 0.055556, -0.029944,
+                    -0.002944, 0.0,
+                ],
+            ),
+            (
+                CatmullRomFilter::new().into(),
+                [1.0, 0.9765, 0.867188, 0.5625, 0.20255, 0.0, -0.0735, -0.0045, 0.0],
+            ),
+            (
+                LanczosFilter::default().into(),
+                [1.0, 0.981835, 0.890067, 0.607927, 0.244703, 0.0, -0.14233, -0.02377, 0.024317],
+            ),
+        ];
+        for (f, want) in cases {
+            for (x, w) in xs.iter().zip(want) {
+                assert!(
+                    (f.eval(*x) - w).abs() < 2e-6,
+                    "{} at {x}: {} vs {w}",
+                    f.plugin_name(),
+                    f.eval(*x)
+                );
+            }
+        }
+        assert_eq!(ReconstructionFilter::from(LanczosFilter::default()).border_size(), 3);
+        assert_eq!(ReconstructionFilter::from(MitchellFilter::default()).border_size(), 2);
+    }
+
     #[test]
     fn constructors_validate() {
+        assert!(LanczosFilter::new(0).is_err() && LanczosFilter::new(-2).is_err());
+        assert!(LanczosFilter::new(1000).is_err());
+        assert!(MitchellFilter::new(f32::NAN, 0.3).is_err());
         for bad in [0.0f32, -1.0, f32::NAN, f32::INFINITY, 1000.0] {
             assert!(TentFilter::new(bad).is_err(), "tent {bad}");
             assert!(GaussianFilter::new(bad).is_err(), "gaussian {bad}");

@@ -34,19 +34,39 @@
 //!   parallel to the view direction, singular matrices) are errors; spectrum wavelengths
 //!   must increase strictly; the root must be `<scene>`; an included file must have a
 //!   `<scene>` root; `<path>` and `<spectrum filename>` are not supported yet.
+//!
+//! ## Module map
+//!
+//! Imports run one way: a module uses only the modules in its last column, never one above
+//! it, so there is no import cycle (checked by listing every `crate::`/`super::` path).
+//!
+//! | module       | holds | may import |
+//! |--------------|-------|------------|
+//! | `registry`   | stage 2: tree → core plugins → `Scene`; one file and one name → builder table per family | `tree`, `properties`, `error` |
+//! | `xml`        | stage 1: XML → tree; `parser` uses `attrs`, `params`, `values`, `transform`, `link` | `tree`, `properties`, `spectrum`, `upgrade`, `error`, `source` |
+//! | `tree`       | the parsed scene tree ([`PluginNode`], [`SceneNode`]) | `properties`, `error`, `source` |
+//! | `upgrade`    | the pre-2.0 upgrade rules | `properties`, `error` |
+//! | `properties` | typed, usage-tracked properties | `error`, `source` |
+//! | `spectrum`   | `wavelength:value` spectra → RGB | none |
+//! | `error`      | [`LoadError`] | `source` |
+//! | `source`     | [`SourcePos`] | none |
+//!
+//! The crate root ([`load_file`], [`load_string`]) runs `xml` then `registry`; `verify`
+//! (closed-form validation cases) loads its scenes through the root.
 
 pub mod error;
 pub mod properties;
 pub mod source;
 pub mod spectrum;
-mod transform;
+pub mod tree;
 pub mod upgrade;
 pub mod xml;
 
 pub use error::LoadError;
 pub use properties::{Properties, PropertyValue, SpectrumValue};
 pub use source::SourcePos;
-pub use xml::{parse_file, parse_string, Child, ObjectTag, PluginNode, SceneNode};
+pub use tree::{Child, ObjectTag, PluginNode, SceneNode};
+pub use xml::{parse_file, parse_string};
 
 mod registry;
 

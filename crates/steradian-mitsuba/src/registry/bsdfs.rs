@@ -21,7 +21,7 @@ use super::textures::{self, texture_param};
 use super::{at, at_property, unknown_type, Builder};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
-use crate::xml::{ObjectTag, PluginNode};
+use crate::tree::{ObjectTag, PluginNode};
 
 const KNOWN: &[&str] = &[
     "diffuse",

@@ -9,7 +9,7 @@ use steradian::{Spectrum, Vec3};
 
 use super::{at, at_property, unknown_type};
 use crate::error::LoadError;
-use crate::xml::PluginNode;
+use crate::tree::PluginNode;
 
 const STANDALONE: &[&str] = &["point", "spot", "directional", "constant"];
 

@@ -8,7 +8,7 @@ use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
 
 use super::{at_property, unknown_type};
 use crate::error::LoadError;
-use crate::xml::PluginNode;
+use crate::tree::PluginNode;
 
 const KNOWN: &[&str] = &["path", "direct"];
 

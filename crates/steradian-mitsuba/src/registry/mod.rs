@@ -21,7 +21,7 @@ use steradian::bsdf::Bsdf;
 use steradian::scene::{Scene, SceneDescription};
 
 use crate::error::LoadError;
-use crate::xml::{ObjectTag, PluginNode, SceneNode};
+use crate::tree::{ObjectTag, PluginNode, SceneNode};
 
 /// State while a scene is assembled.
 pub(crate) struct Builder {

@@ -12,7 +12,7 @@ use steradian::sensor::{
 
 use super::{at, at_property, unknown_type};
 use crate::error::LoadError;
-use crate::xml::{ObjectTag, PluginNode};
+use crate::tree::{ObjectTag, PluginNode};
 
 const KNOWN: &[&str] = &["perspective", "thinlens", "radiancemeter", "irradiancemeter"];
 

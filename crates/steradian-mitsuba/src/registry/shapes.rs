@@ -9,7 +9,7 @@ use steradian::Vec3;
 
 use super::{emitters, unknown_type, Builder};
 use crate::error::LoadError;
-use crate::xml::{ObjectTag, PluginNode};
+use crate::tree::{ObjectTag, PluginNode};
 
 const KNOWN: &[&str] = &["obj", "ply", "rectangle", "disk", "cube", "sphere", "cylinder"];
 

@@ -9,7 +9,7 @@ use steradian::Spectrum;
 
 use super::{unknown_type, Builder};
 use crate::error::LoadError;
-use crate::xml::{ObjectTag, PluginNode};
+use crate::tree::{ObjectTag, PluginNode};
 
 const KNOWN: &[&str] = &["bitmap", "checkerboard"];
 

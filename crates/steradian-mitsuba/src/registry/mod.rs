@@ -1,10 +1,12 @@
 //! The plugin registry: turns the parsed tree into the core renderer's [`Scene`].
 //!
-//! Each node is built by the function for its tag and `type` (one file per plugin family),
-//! which reads its properties through the typed accessors and takes its children; afterwards
-//! [`PluginNode::check_all_used`] makes anything the plugin did not read an error, as
-//! Mitsuba's "unreferenced property" is. An object referenced several times (`<ref>`) is built
-//! once and shared.
+//! Each node is built by the function for its tag and `type`: one file per plugin family, each
+//! with one table ([`Plugins`]) from `type` to builder, which both dispatch and the "unknown
+//! plugin type" error read (a unit test checks that README.md's table of supported plugins
+//! names every entry). A builder reads its properties through the typed accessors and takes
+//! its children; afterwards [`PluginNode::check_all_used`] makes anything the plugin did not
+//! read an error, as Mitsuba's "unreferenced property" is. An object referenced several times
+//! (`<ref>`) is built once and shared.
 
 mod bsdfs;
 mod emitters;
@@ -88,17 +90,30 @@ impl Builder {
     }
 }
 
-/// An error for a plugin `type` steradian does not know.
-pub(crate) fn unknown_type(node: &PluginNode, known: &[&str]) -> LoadError {
-    LoadError::at(
-        &node.pos,
-        format!(
-            "unknown {} plugin type '{}' (steradian knows: {})",
-            node.tag.name(),
-            node.plugin_type,
-            known.join(", ")
-        ),
-    )
+/// One plugin family: every `type` steradian knows, each with the function that builds it.
+/// Dispatch ([`lookup`]) and the list of known names in the "unknown plugin type" error both
+/// read the table, so the two cannot drift apart.
+pub(crate) type Plugins<F> = [(&'static str, F)];
+
+/// The builder for `node`'s `type`, or an error naming every `type` of the family.
+pub(crate) fn lookup<F: Copy>(plugins: &Plugins<F>, node: &PluginNode) -> Result<F, LoadError> {
+    match plugins.iter().find(|(name, _)| *name == node.plugin_type) {
+        Some((_, build)) => Ok(*build),
+        None => Err(LoadError::at(
+            &node.pos,
+            format!(
+                "unknown {} plugin type '{}' (steradian knows: {})",
+                node.tag.name(),
+                node.plugin_type,
+                names(plugins).join(", ")
+            ),
+        )),
+    }
+}
+
+/// The names of a family's plugins, in table order.
+pub(crate) fn names<F>(plugins: &Plugins<F>) -> Vec<&'static str> {
+    plugins.iter().map(|(name, _)| *name).collect()
 }
 
 /// Converts a core-library error message into a loader error at `node`.
@@ -191,4 +206,40 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Scene, LoadError
         ));
     }
     Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The README's table of supported plugins names every plugin of every family's table.
+    #[test]
+    fn readme_lists_every_plugin() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md");
+        let readme = std::fs::read_to_string(path).unwrap();
+        let families = [
+            ("shapes", names(shapes::SHAPES)),
+            ("BSDFs", names(bsdfs::BSDFS)),
+            ("textures", names(textures::TEXTURES)),
+            ("emitters", [names(emitters::EMITTERS), vec!["area"]].concat()),
+            (
+                "sensors",
+                [names(sensors::SENSORS), names(sensors::FILMS), names(sensors::FILTERS)].concat(),
+            ),
+            ("samplers", names(sensors::SAMPLERS)),
+            ("integrators", names(integrators::INTEGRATORS)),
+        ];
+        for (family, plugins) in families {
+            let row = readme
+                .lines()
+                .find(|l| l.starts_with(&format!("| {family} ")))
+                .unwrap_or_else(|| panic!("README.md has no row for {family}"));
+            for name in plugins {
+                assert!(
+                    row.contains(&format!("`{name}`")),
+                    "README.md's {family} row lacks {name}"
+                );
+            }
+        }
+    }
 }

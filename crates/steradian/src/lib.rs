@@ -25,6 +25,7 @@ pub mod emitter;
 pub mod film;
 pub mod geometry;
 pub mod integrator;
+pub mod param;
 pub mod radiometry;
 pub mod sampling;
 pub mod scene;

@@ -16,7 +16,7 @@ use steradian::texture::Texture;
 use steradian::Spectrum;
 
 use super::textures::{self, texture_param};
-use super::{at, at_property, lookup, Builder, Plugins};
+use super::{at, at_param, lookup, Builder, Plugins};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
 use crate::tree::{ObjectTag, PluginNode};
@@ -299,9 +299,7 @@ fn phong(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let diffuse = texture_param(b, node, "diffuse_reflectance", Some(0.5))?;
     let specular = texture_param(b, node, "specular_reflectance", Some(0.2))?;
     let exponent = node.props.get_float("exponent")?.unwrap_or(30.0);
-    Phong::new(diffuse, specular, exponent)
-        .map(Bsdf::Phong)
-        .map_err(at_property(node, &["exponent", "diffuse_reflectance", "specular_reflectance"]))
+    Phong::new(diffuse, specular, exponent).map(Bsdf::Phong).map_err(at_param(node))
 }
 
 fn merl(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {

@@ -7,7 +7,7 @@ use steradian::emitter::{
 use steradian::geometry::Transform;
 use steradian::{Spectrum, Vec3};
 
-use super::{at, at_property, lookup, Plugins};
+use super::{at, at_param, lookup, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
@@ -110,7 +110,7 @@ fn spot(node: &PluginNode) -> Result<Emitter, LoadError> {
     }
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let spot = SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians())
-        .map_err(at_property(node, &["beam_width", "cutoff_angle"]))?;
+        .map_err(at_param(node))?;
     Ok(Emitter::Spot(spot))
 }
 

@@ -6,7 +6,7 @@ use steradian::integrator::{
 };
 use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
 
-use super::{at_property, lookup, Plugins};
+use super::{at_param, lookup, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
@@ -55,8 +55,8 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
 
 fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
     let p = &node.props;
-    let max_depth = parse_max_depth(p.get_int("max_depth")?.unwrap_or(-1))
-        .map_err(at_property(node, &["max_depth"]))?;
+    let max_depth =
+        parse_max_depth(p.get_int("max_depth")?.unwrap_or(-1)).map_err(at_param(node))?;
     let rr_depth = count(node, "rr_depth", 5)?;
     if rr_depth == 0 {
         let pos = p.position("rr_depth").unwrap_or(&node.pos);
@@ -65,13 +65,13 @@ fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
     // steradian's own: the roulette's κ (integrator/path.rs)
     let rr_scale = match p.get_float("rr_scale")? {
         None => DEFAULT_RR_SCALE,
-        Some(v) => parse_rr_scale(v).map_err(at_property(node, &["rr_scale"]))?,
+        Some(v) => parse_rr_scale(v).map_err(at_param(node))?,
     };
     // steradian's own: paths continued from each first hit (integrator/path.rs); unset, a
     // pilot chooses (integrator/branching.rs)
     let branches = match p.get_int("branches")? {
         None => Branches::Auto,
-        Some(v) => parse_branches(v).map_err(at_property(node, &["branches"]))?,
+        Some(v) => parse_branches(v).map_err(at_param(node))?,
     };
     Ok(Integrator::Path(PathTracer {
         max_depth,

@@ -20,6 +20,7 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use steradian::bsdf::Bsdf;
+use steradian::param::ParamError;
 use steradian::scene::{Scene, SceneDescription};
 
 use crate::error::LoadError;
@@ -121,20 +122,16 @@ pub(crate) fn at(node: &PluginNode) -> impl Fn(String) -> LoadError + '_ {
     move |msg| LoadError::at(&node.pos, format!("{}: {msg}", node.desc()))
 }
 
-/// Like [`at`], but placed at the property the message is about: the one of `names` that
-/// occurs first in the message and is given in `node` (core-library messages name the
-/// parameter, as in "fov must lie ..."); at `node` itself when none is.
-pub(crate) fn at_property<'a>(
-    node: &'a PluginNode,
-    names: &'a [&'a str],
-) -> impl Fn(String) -> LoadError + 'a {
-    move |msg| {
-        let pos = names
-            .iter()
-            .filter_map(|n| Some((msg.find(n)?, node.props.position(n)?)))
-            .min_by_key(|(i, _)| *i)
-            .map_or(&node.pos, |(_, p)| p);
-        LoadError::at(pos, format!("{}: {msg}", node.desc()))
+/// Converts a core-library parameter error into a loader error at the property it names:
+/// `param` where `node` gives it, else the related parameter where `node` gives that (the
+/// one the scene set when it left `param` at its default), else `node` itself.
+pub(crate) fn at_param(node: &PluginNode) -> impl Fn(ParamError) -> LoadError + '_ {
+    move |e| {
+        let pos = std::iter::once(e.param)
+            .chain(e.related)
+            .find_map(|n| node.props.position(n))
+            .unwrap_or(&node.pos);
+        LoadError::at(pos, format!("{}: {e}", node.desc()))
     }
 }
 

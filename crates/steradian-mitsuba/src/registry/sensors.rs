@@ -11,7 +11,7 @@ use steradian::sensor::{
     FieldOfView, FovAxis, IrradianceMeter, Perspective, RadianceMeter, Sensor, SensorKind, ThinLens,
 };
 
-use super::{at, at_property, lookup, Plugins};
+use super::{at, at_param, lookup, Plugins};
 use crate::error::LoadError;
 use crate::tree::{ObjectTag, PluginNode};
 
@@ -346,18 +346,12 @@ fn projective(node: &PluginNode, film: &Film) -> Result<Projective, LoadError> {
             }
         }
     };
-    let x_fov =
-        fov.x_fov(film.width, film.height).map_err(at_property(node, &["fov", "focal_length"]))?;
+    let x_fov = fov.x_fov(film.width, film.height).map_err(at_param(node))?;
     let aspect = film.width as f32 / film.height as f32;
     let near_clip = p.get_float("near_clip")?.unwrap_or(0.01);
     let far_clip = p.get_float("far_clip")?.unwrap_or(1e4);
     let focus_distance = p.get_float("focus_distance")?.unwrap_or(far_clip);
     Ok(Projective { to_world, x_fov, aspect, near_clip, far_clip, focus_distance })
-}
-
-/// Places a camera constructor's error at the parameter it names.
-fn lens_err(node: &PluginNode) -> impl Fn(String) -> LoadError + '_ {
-    at_property(node, &["to_world", "near_clip", "far_clip", "aperture_radius", "focus_distance"])
 }
 
 fn perspective(
@@ -368,7 +362,7 @@ fn perspective(
     not_in_shape(node, shape)?;
     let c = projective(node, film)?;
     let camera = Perspective::new(c.to_world, c.x_fov, c.aspect, c.near_clip, c.far_clip)
-        .map_err(lens_err(node))?;
+        .map_err(at_param(node))?;
     Ok(SensorKind::Perspective(camera))
 }
 
@@ -387,6 +381,6 @@ fn thinlens(node: &PluginNode, film: &Film, shape: Option<u32>) -> Result<Sensor
         aperture,
         c.focus_distance,
     )
-    .map_err(lens_err(node))?;
+    .map_err(at_param(node))?;
     Ok(SensorKind::ThinLens(camera))
 }

@@ -14,6 +14,7 @@ use glam::Vec3;
 
 use super::{EmitterSample, Support};
 use crate::geometry::{Frame, Transform};
+use crate::param::ParamError;
 use crate::shape::is_positive;
 use crate::Spectrum;
 
@@ -38,19 +39,20 @@ impl SpotLight {
         intensity: Spectrum,
         cutoff: f32,
         beam_width: f32,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, ParamError> {
         if !(cutoff > 0.0 && cutoff <= std::f32::consts::PI) {
-            return Err(format!(
-                "cutoff_angle must lie in (0°, 180°], got {}°",
-                cutoff.to_degrees()
+            return Err(ParamError::new(
+                "cutoff_angle",
+                format!("cutoff_angle must lie in (0°, 180°], got {}°", cutoff.to_degrees()),
             ));
         }
         if !(beam_width > 0.0 && beam_width <= cutoff) {
-            return Err(format!(
+            let reason = format!(
                 "beam_width must lie in (0°, cutoff_angle = {}°], got {}°",
                 cutoff.to_degrees(),
                 beam_width.to_degrees()
-            ));
+            );
+            return Err(ParamError::new("beam_width", reason).with_related("cutoff_angle"));
         }
         let axis = to_world.vector(Vec3::Z).normalize();
         Ok(SpotLight {

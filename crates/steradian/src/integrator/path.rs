@@ -85,6 +85,7 @@ use super::LightSelection;
 use crate::bsdf::{Lobe, ShadingPoint};
 use crate::emitter::Support;
 use crate::geometry::{Ray, SurfaceInteraction};
+use crate::param::ParamError;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
 use crate::shape::{is_positive, SurfacePoint};
@@ -164,10 +165,12 @@ impl Default for PathTracer {
 pub const DEFAULT_RR_SCALE: f32 = 4.0;
 
 /// Checks an `rr_scale` value: finite and positive.
-pub fn parse_rr_scale(v: f32) -> Result<f32, String> {
+pub fn parse_rr_scale(v: f32) -> Result<f32, ParamError> {
     match v {
         k if k.is_finite() && k > 0.0 => Ok(k),
-        _ => Err(format!("rr_scale must be a positive number, got {v}")),
+        _ => {
+            Err(ParamError::new("rr_scale", format!("rr_scale must be a positive number, got {v}")))
+        }
     }
 }
 
@@ -178,19 +181,25 @@ pub const DEFAULT_BRANCHES: u32 = 4;
 pub const MAX_BRANCHES: u32 = 64;
 
 /// Checks a `branches` value: 1 to [`MAX_BRANCHES`].
-pub fn parse_branches(v: i64) -> Result<Branches, String> {
+pub fn parse_branches(v: i64) -> Result<Branches, ParamError> {
     match v {
         v if (1..=MAX_BRANCHES as i64).contains(&v) => Ok(Branches::Fixed(v as u32)),
-        v => Err(format!("branches must be between 1 and {MAX_BRANCHES}, got {v}")),
+        v => Err(ParamError::new(
+            "branches",
+            format!("branches must be between 1 and {MAX_BRANCHES}, got {v}"),
+        )),
     }
 }
 
 /// Mitsuba's `max_depth` convention: −1 means unbounded; other negatives are errors.
-pub fn parse_max_depth(v: i64) -> Result<Option<u32>, String> {
+pub fn parse_max_depth(v: i64) -> Result<Option<u32>, ParamError> {
     match v {
         -1 => Ok(None),
         v if v >= 0 && v <= u32::MAX as i64 => Ok(Some(v as u32)),
-        v => Err(format!("max_depth must be -1 (unbounded) or >= 0, got {v}")),
+        v => Err(ParamError::new(
+            "max_depth",
+            format!("max_depth must be -1 (unbounded) or >= 0, got {v}"),
+        )),
     }
 }
 

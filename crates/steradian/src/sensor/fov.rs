@@ -1,5 +1,6 @@
 //! Field of view as Mitsuba's projective cameras specify it.
 
+use crate::param::ParamError;
 use crate::shape::is_positive;
 use std::fmt;
 
@@ -49,14 +50,17 @@ pub enum FieldOfView {
 
 impl FieldOfView {
     /// The horizontal field of view in radians for an image of `width`×`height` pixels.
-    pub fn x_fov(&self, width: u32, height: u32) -> Result<f32, String> {
+    pub fn x_fov(&self, width: u32, height: u32) -> Result<f32, ParamError> {
         let aspect = width as f64 / height as f64;
         let diagonal_px = ((width as f64).powi(2) + (height as f64).powi(2)).sqrt();
         let (degrees, axis) = match *self {
             FieldOfView::Angle { degrees, axis } => (degrees as f64, axis),
             FieldOfView::FocalLength { mm } => {
                 if !is_positive(mm) || !mm.is_finite() {
-                    return Err(format!("focal_length must be positive, got {mm} mm"));
+                    return Err(ParamError::new(
+                        "focal_length",
+                        format!("focal_length must be positive, got {mm} mm"),
+                    ));
                 }
                 // diagonal field of view of a 36×24 mm frame
                 let diag_35mm = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
@@ -64,7 +68,10 @@ impl FieldOfView {
             }
         };
         if !(degrees > 0.0 && degrees < 180.0) {
-            return Err(format!("fov must lie strictly between 0 and 180 degrees, got {degrees}"));
+            return Err(ParamError::new(
+                "fov",
+                format!("fov must lie strictly between 0 and 180 degrees, got {degrees}"),
+            ));
         }
         let axis = match axis {
             FovAxis::Smaller => {

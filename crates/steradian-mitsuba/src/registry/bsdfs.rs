@@ -73,9 +73,10 @@ fn ior(node: &PluginNode, name: &str, default: &str) -> Result<f32, LoadError> {
     Ok(v)
 }
 
-/// int_ior/ext_ior with Mitsuba's defaults (bk7 / air).
+/// int_ior/ext_ior of the dielectrics, with their defaults.
 fn relative_ior(node: &PluginNode) -> Result<f32, LoadError> {
-    Ok(ior(node, "int_ior", "bk7")? / ior(node, "ext_ior", "air")?)
+    Ok(ior(node, "int_ior", Dielectric::DEFAULT_INT_IOR)?
+        / ior(node, "ext_ior", Dielectric::DEFAULT_EXT_IOR)?)
 }
 
 /// A constant spectrum parameter with a default.
@@ -86,12 +87,15 @@ fn spectrum(node: &PluginNode, name: &str, default: f32) -> Result<Spectrum, Loa
 /// Conductor IOR: `material` preset (default `none`: η 0, k 1) or explicit `eta`/`k`.
 fn conductor_ior(node: &PluginNode) -> Result<(Spectrum, Spectrum), LoadError> {
     let p = &node.props;
-    let material = p.get_string("material")?.unwrap_or_else(|| "none".into());
+    let material = p.get_string("material")?.unwrap_or_else(|| Conductor::DEFAULT_MATERIAL.into());
     if p.contains("eta") || material == "none" {
         if material != "none" {
             return Err(at(node)("specify either (eta, k) or material, not both".into()));
         }
-        Ok((spectrum(node, "eta", 0.0)?, spectrum(node, "k", 1.0)?))
+        Ok((
+            spectrum(node, "eta", Conductor::DEFAULT_ETA)?,
+            spectrum(node, "k", Conductor::DEFAULT_K)?,
+        ))
     } else {
         conductor_preset(&material).map_err(at(node))
     }
@@ -110,7 +114,8 @@ fn microfacet(
 ) -> Result<(MicrofacetDistribution, AlphaTextures), LoadError> {
     let p = &node.props;
     let kind = match p.get_string("distribution")?.map(|s| s.to_lowercase()).as_deref() {
-        None | Some("beckmann") => MicrofacetKind::Beckmann,
+        None => MicrofacetKind::default(),
+        Some("beckmann") => MicrofacetKind::Beckmann,
         Some("ggx") => MicrofacetKind::Ggx,
         Some(other) => {
             return Err(at(node)(format!(
@@ -118,15 +123,17 @@ fn microfacet(
             )))
         }
     };
-    let sample_visible = p.get_bool("sample_visible")?.unwrap_or(true);
+    let sample_visible =
+        p.get_bool("sample_visible")?.unwrap_or(MicrofacetDistribution::DEFAULT_SAMPLE_VISIBLE);
     let given = |n: &str| {
         p.contains(n) || (textures && node.children.iter().any(|c| c.name.as_deref() == Some(n)))
     };
     let alpha = |n: &str| -> Result<Texture, LoadError> {
         if textures {
-            texture_param(b, node, n, Some(0.1))
+            texture_param(b, node, n, Some(MicrofacetDistribution::DEFAULT_ALPHA))
         } else {
-            Ok(Texture::Constant(Spectrum::splat(p.get_float(n)?.unwrap_or(0.1))))
+            let alpha = p.get_float(n)?.unwrap_or(MicrofacetDistribution::DEFAULT_ALPHA);
+            Ok(Texture::Constant(Spectrum::splat(alpha)))
         }
     };
     let (tu, tv) = if given("alpha_u") || given("alpha_v") {
@@ -152,7 +159,11 @@ fn microfacet(
             }
             Ok((MicrofacetDistribution::new(kind, au, av, sample_visible), None))
         }
-        _ => Ok((MicrofacetDistribution::new(kind, 0.1, 0.1, sample_visible), Some((tu, tv)))),
+        _ => {
+            // α placeholders: the textures give the roughness at each point
+            let a = MicrofacetDistribution::DEFAULT_ALPHA;
+            Ok((MicrofacetDistribution::new(kind, a, a, sample_visible), Some((tu, tv))))
+        }
     }
 }
 
@@ -186,7 +197,12 @@ pub(crate) fn build(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 }
 
 fn diffuse(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
-    Ok(Bsdf::Diffuse(Diffuse::new(texture_param(b, node, "reflectance", Some(0.5))?)))
+    Ok(Bsdf::Diffuse(Diffuse::new(texture_param(
+        b,
+        node,
+        "reflectance",
+        Some(Diffuse::DEFAULT_REFLECTANCE),
+    )?)))
 }
 
 fn twosided(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
@@ -209,18 +225,20 @@ fn twosided(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 
 fn conductor(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let (eta, k) = conductor_ior(node)?;
+    let specular = Some(Conductor::DEFAULT_SPECULAR_REFLECTANCE);
     Ok(Bsdf::Conductor(Conductor::new(
         eta,
         k,
-        texture_param(b, node, "specular_reflectance", Some(1.0))?,
+        texture_param(b, node, "specular_reflectance", specular)?,
     )))
 }
 
 fn roughconductor(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let (eta, k) = conductor_ior(node)?;
     let (d, alpha) = microfacet(b, node, true)?;
+    let specular = Some(Conductor::DEFAULT_SPECULAR_REFLECTANCE);
     let mut c =
-        RoughConductor::new(d, eta, k, texture_param(b, node, "specular_reflectance", Some(1.0))?);
+        RoughConductor::new(d, eta, k, texture_param(b, node, "specular_reflectance", specular)?);
     if let Some((u, v)) = alpha {
         c = c.with_alpha_textures(u, v);
     }
@@ -230,8 +248,18 @@ fn roughconductor(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 /// The relative IOR and the specular reflectance and transmittance of the dielectrics.
 fn dielectric_params(b: &Builder, node: &PluginNode) -> Result<(f32, Texture, Texture), LoadError> {
     let eta = relative_ior(node)?;
-    let r = texture_param(b, node, "specular_reflectance", Some(1.0))?;
-    let t = texture_param(b, node, "specular_transmittance", Some(1.0))?;
+    let r = texture_param(
+        b,
+        node,
+        "specular_reflectance",
+        Some(Dielectric::DEFAULT_SPECULAR_REFLECTANCE),
+    )?;
+    let t = texture_param(
+        b,
+        node,
+        "specular_transmittance",
+        Some(Dielectric::DEFAULT_SPECULAR_TRANSMITTANCE),
+    )?;
     Ok((eta, r, t))
 }
 
@@ -264,11 +292,17 @@ fn plastic_params(
     b: &Builder,
     node: &PluginNode,
 ) -> Result<(f32, Texture, Texture, InternalScattering), LoadError> {
-    // Mitsuba: plastic coatings default to polypropylene in air.
-    let eta = ior(node, "int_ior", "polypropylene")? / ior(node, "ext_ior", "air")?;
-    let diffuse = texture_param(b, node, "diffuse_reflectance", Some(0.5))?;
-    let specular = texture_param(b, node, "specular_reflectance", Some(1.0))?;
-    let internal = if node.props.get_bool("nonlinear")?.unwrap_or(false) {
+    let eta = ior(node, "int_ior", Plastic::DEFAULT_INT_IOR)?
+        / ior(node, "ext_ior", Plastic::DEFAULT_EXT_IOR)?;
+    let diffuse =
+        texture_param(b, node, "diffuse_reflectance", Some(Plastic::DEFAULT_DIFFUSE_REFLECTANCE))?;
+    let specular = texture_param(
+        b,
+        node,
+        "specular_reflectance",
+        Some(Plastic::DEFAULT_SPECULAR_REFLECTANCE),
+    )?;
+    let internal = if node.props.get_bool("nonlinear")?.unwrap_or(Plastic::DEFAULT_NONLINEAR) {
         InternalScattering::Nonlinear
     } else {
         InternalScattering::Linear
@@ -296,9 +330,11 @@ fn roughplastic(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 }
 
 fn phong(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
-    let diffuse = texture_param(b, node, "diffuse_reflectance", Some(0.5))?;
-    let specular = texture_param(b, node, "specular_reflectance", Some(0.2))?;
-    let exponent = node.props.get_float("exponent")?.unwrap_or(30.0);
+    let diffuse =
+        texture_param(b, node, "diffuse_reflectance", Some(Phong::DEFAULT_DIFFUSE_REFLECTANCE))?;
+    let specular =
+        texture_param(b, node, "specular_reflectance", Some(Phong::DEFAULT_SPECULAR_REFLECTANCE))?;
+    let exponent = node.props.get_float("exponent")?.unwrap_or(Phong::DEFAULT_EXPONENT);
     Phong::new(diffuse, specular, exponent).map(Bsdf::Phong).map_err(at_param(node))
 }
 
@@ -316,7 +352,7 @@ fn merl(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 }
 
 fn mask(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
-    let opacity = texture_param(b, node, "opacity", Some(0.5))?;
+    let opacity = texture_param(b, node, "opacity", Some(Mask::DEFAULT_OPACITY))?;
     Ok(Bsdf::Mask(Mask::new(opacity, one_nested(b, node)?)))
 }
 
@@ -337,7 +373,7 @@ fn bumpmap(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
         )));
     }
     let height = textures::build(b, &textures[0].node)?;
-    let scale = node.props.get_float("scale")?.unwrap_or(1.0);
+    let scale = node.props.get_float("scale")?.unwrap_or(BumpMap::DEFAULT_SCALE);
     if !scale.is_finite() {
         return Err(at(node)(format!("scale must be finite, got {scale}")));
     }

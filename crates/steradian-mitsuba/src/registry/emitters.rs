@@ -23,7 +23,8 @@ pub(crate) fn build_area(
             format!("a shape can only carry an 'area' emitter, not '{}'", node.plugin_type),
         ));
     }
-    let radiance = super::textures::texture_param(b, node, "radiance", Some(1.0))?;
+    let radiance =
+        super::textures::texture_param(b, node, "radiance", Some(AreaLight::DEFAULT_RADIANCE))?;
     if let steradian::texture::Texture::Constant(v) = radiance {
         check_non_negative(node, "radiance", v)?;
     }
@@ -78,7 +79,8 @@ pub(crate) fn build_standalone(node: &PluginNode) -> Result<Emitter, LoadError> 
 }
 
 fn point(node: &PluginNode) -> Result<Emitter, LoadError> {
-    let intensity = node.props.get_spectrum("intensity")?.unwrap_or(Spectrum::ONE);
+    let default = Spectrum::splat(PointLight::DEFAULT_INTENSITY);
+    let intensity = node.props.get_spectrum("intensity")?.unwrap_or(default);
     check_non_negative(node, "intensity", intensity)?;
     let to_world = position_or_to_world(node)?;
     Ok(Emitter::Point(PointLight::new(to_world.point(Vec3::ZERO), intensity)))
@@ -86,10 +88,11 @@ fn point(node: &PluginNode) -> Result<Emitter, LoadError> {
 
 fn spot(node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
-    let intensity = p.get_spectrum("intensity")?.unwrap_or(Spectrum::ONE);
+    let intensity =
+        p.get_spectrum("intensity")?.unwrap_or(Spectrum::splat(SpotLight::DEFAULT_INTENSITY));
     check_non_negative(node, "intensity", intensity)?;
-    let cutoff = p.get_float("cutoff_angle")?.unwrap_or(20.0);
-    let beam = p.get_float("beam_width")?.unwrap_or(cutoff * 0.75);
+    let cutoff = p.get_float("cutoff_angle")?.unwrap_or(SpotLight::DEFAULT_CUTOFF_ANGLE);
+    let beam = p.get_float("beam_width")?.unwrap_or(cutoff * SpotLight::DEFAULT_BEAM_WIDTH_RATIO);
     // Checked here in the user's degrees (the core's check, in radians, would echo
     // 30° back as 30.000002°).
     let prop_err = |name: &str, msg: String| {
@@ -116,7 +119,9 @@ fn spot(node: &PluginNode) -> Result<Emitter, LoadError> {
 
 fn directional(node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
-    let irradiance = p.get_spectrum("irradiance")?.unwrap_or(Spectrum::ONE);
+    let irradiance = p
+        .get_spectrum("irradiance")?
+        .unwrap_or(Spectrum::splat(DirectionalLight::DEFAULT_IRRADIANCE));
     check_non_negative(node, "irradiance", irradiance)?;
     let direction = match (p.get_vector("direction")?, p.get_transform("to_world")?) {
         (Some(_), Some(_)) => {
@@ -127,13 +132,14 @@ fn directional(node: &PluginNode) -> Result<Emitter, LoadError> {
         }
         (Some(d), None) => d,
         (None, Some(t)) => t.vector(Vec3::Z),
-        (None, None) => Vec3::Z,
+        (None, None) => DirectionalLight::DEFAULT_DIRECTION,
     };
     Ok(Emitter::Directional(DirectionalLight::new(direction, irradiance).map_err(at(node))?))
 }
 
 fn constant(node: &PluginNode) -> Result<Emitter, LoadError> {
-    let radiance = node.props.get_spectrum("radiance")?.unwrap_or(Spectrum::ONE);
+    let default = Spectrum::splat(ConstantEnvironment::DEFAULT_RADIANCE);
+    let radiance = node.props.get_spectrum("radiance")?.unwrap_or(default);
     check_non_negative(node, "radiance", radiance)?;
     Ok(Emitter::Constant(ConstantEnvironment::new(radiance)))
 }

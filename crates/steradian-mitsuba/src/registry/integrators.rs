@@ -2,7 +2,7 @@
 
 use steradian::integrator::{
     parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LightSelection,
-    DEFAULT_RR_SCALE,
+    DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
 };
 use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
 
@@ -10,11 +10,12 @@ use super::{at_param, lookup, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
+/// `hide_emitters`.
 fn visibility(hide: Option<bool>) -> EmitterVisibility {
-    if hide.unwrap_or(false) {
-        EmitterVisibility::Hidden
-    } else {
-        EmitterVisibility::Visible
+    match hide {
+        None => EmitterVisibility::default(),
+        Some(true) => EmitterVisibility::Hidden,
+        Some(false) => EmitterVisibility::Visible,
     }
 }
 
@@ -31,7 +32,7 @@ fn count(node: &PluginNode, name: &str, default: i64) -> Result<u32, LoadError> 
 /// steradian's own `light_selection` parameter (default `uniform`, Mitsuba's rule).
 fn light_selection(node: &PluginNode) -> Result<LightSelection, LoadError> {
     match node.props.get_string("light_selection")? {
-        None => Ok(LightSelection::Uniform),
+        None => Ok(LightSelection::default()),
         Some(s) => LightSelection::parse(&s).map_err(|m| {
             LoadError::at(
                 node.props.position("light_selection").unwrap_or(&node.pos),
@@ -55,9 +56,11 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
 
 fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
     let p = &node.props;
-    let max_depth =
-        parse_max_depth(p.get_int("max_depth")?.unwrap_or(-1)).map_err(at_param(node))?;
-    let rr_depth = count(node, "rr_depth", 5)?;
+    let max_depth = match p.get_int("max_depth")? {
+        None => DEFAULT_MAX_DEPTH,
+        Some(v) => parse_max_depth(v).map_err(at_param(node))?,
+    };
+    let rr_depth = count(node, "rr_depth", DEFAULT_RR_DEPTH as i64)?;
     if rr_depth == 0 {
         let pos = p.position("rr_depth").unwrap_or(&node.pos);
         return Err(LoadError::at(pos, format!("{}: 'rr_depth' must be at least 1", node.desc())));
@@ -70,7 +73,7 @@ fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
     // steradian's own: paths continued from each first hit (integrator/path.rs); unset, a
     // pilot chooses (integrator/branching.rs)
     let branches = match p.get_int("branches")? {
-        None => Branches::Auto,
+        None => Branches::default(),
         Some(v) => parse_branches(v).map_err(at_param(node))?,
     };
     Ok(Integrator::Path(PathTracer {
@@ -85,7 +88,7 @@ fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
 }
 
 fn direct(node: &PluginNode) -> Result<Integrator, LoadError> {
-    let shading = count(node, "shading_samples", 1)?;
+    let shading = count(node, "shading_samples", DirectIntegrator::DEFAULT_SHADING_SAMPLES as i64)?;
     let emitter_samples = count(node, "emitter_samples", shading as i64)?;
     let bsdf_samples = count(node, "bsdf_samples", shading as i64)?;
     Ok(Integrator::Direct(DirectIntegrator {

@@ -78,8 +78,8 @@ fn build_film(node: &PluginNode) -> Result<Film, LoadError> {
 
 fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
     let p = &node.props;
-    let width = positive_int(node, "width", 768)?;
-    let height = positive_int(node, "height", 576)?;
+    let width = positive_int(node, "width", Film::DEFAULT_WIDTH as i64)?;
+    let height = positive_int(node, "height", Film::DEFAULT_HEIGHT as i64)?;
     let filter = match single_child(node, ObjectTag::RFilter)? {
         Some(f) => build_filter(f)?,
         None => ReconstructionFilter::default(),
@@ -104,7 +104,7 @@ fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
         Some(f) => ComponentFormat::parse(&f).map_err(|m| {
             LoadError::at(p.position("component_format").unwrap(), format!("hdrfilm: {m}"))
         })?,
-        None => ComponentFormat::Float16,
+        None => ComponentFormat::default(),
     };
     if p.get_bool("sample_border")? == Some(true) {
         return Err(LoadError::at(
@@ -140,8 +140,8 @@ pub(super) const SAMPLERS: &Plugins<BuildSampler> = &[
 
 fn build_sampler(node: &PluginNode) -> Result<Sampler, LoadError> {
     let kind = lookup(SAMPLERS, node)?(node)?;
-    let sample_count = positive_int(node, "sample_count", 4)?;
-    let seed = node.props.get_int("seed")?.unwrap_or(0);
+    let sample_count = positive_int(node, "sample_count", Sampler::DEFAULT_SAMPLE_COUNT as i64)?;
+    let seed = node.props.get_int("seed")?.unwrap_or(Sampler::DEFAULT_SEED as i64);
     if seed < 0 {
         return Err(LoadError::at(
             node.props.position("seed").unwrap(),
@@ -213,7 +213,10 @@ pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, Loa
     let build_kind = lookup(SENSORS, node)?;
     let film = match single_child(node, ObjectTag::Film)? {
         Some(f) => build_film(f)?,
-        None => Film::new(768, 576, ReconstructionFilter::default()).map_err(at(node))?,
+        None => {
+            Film::new(Film::DEFAULT_WIDTH, Film::DEFAULT_HEIGHT, ReconstructionFilter::default())
+                .map_err(at(node))?
+        }
     };
     let sampler = match single_child(node, ObjectTag::Sampler)? {
         Some(s) => build_sampler(s)?,
@@ -326,7 +329,7 @@ fn projective(node: &PluginNode, film: &Film) -> Result<Projective, LoadError> {
                         format!("fov_axis must be x, y, diagonal, smaller or larger, got '{a}'"),
                     )
                 })?,
-                None => FovAxis::X,
+                None => FovAxis::default(),
             };
             FieldOfView::Angle { degrees, axis }
         }
@@ -341,15 +344,15 @@ fn projective(node: &PluginNode, film: &Film) -> Result<Projective, LoadError> {
             FieldOfView::FocalLength {
                 mm: match fl {
                     Some(s) => parse_focal_length(node, &s)?,
-                    None => 50.0,
+                    None => FieldOfView::DEFAULT_FOCAL_LENGTH,
                 },
             }
         }
     };
     let x_fov = fov.x_fov(film.width, film.height).map_err(at_param(node))?;
     let aspect = film.width as f32 / film.height as f32;
-    let near_clip = p.get_float("near_clip")?.unwrap_or(0.01);
-    let far_clip = p.get_float("far_clip")?.unwrap_or(1e4);
+    let near_clip = p.get_float("near_clip")?.unwrap_or(Perspective::DEFAULT_NEAR_CLIP);
+    let far_clip = p.get_float("far_clip")?.unwrap_or(Perspective::DEFAULT_FAR_CLIP);
     let focus_distance = p.get_float("focus_distance")?.unwrap_or(far_clip);
     Ok(Projective { to_world, x_fov, aspect, near_clip, far_clip, focus_distance })
 }

@@ -8,8 +8,8 @@ use steradian::geometry::Transform;
 use steradian::scene::ShapeBinding;
 use steradian::shape::{
     self, read_obj, read_ply, Cylinder, Disk, Mesh, Rectangle, Shape, ShapeError, Sphere,
+    DEFAULT_FLIP_TEX_COORDS,
 };
-use steradian::Vec3;
 
 use super::{emitters, lookup, Builder, Plugins};
 use crate::error::LoadError;
@@ -61,8 +61,8 @@ fn obj(
 ) -> Result<Shape, LoadError> {
     let p = &node.props;
     let path = mesh_file(b, node, "filename")?;
-    let face_normals = p.get_bool("face_normals")?.unwrap_or(false);
-    let flip_tex = p.get_bool("flip_tex_coords")?.unwrap_or(true);
+    let face_normals = p.get_bool("face_normals")?.unwrap_or(Mesh::DEFAULT_FACE_NORMALS);
+    let flip_tex = p.get_bool("flip_tex_coords")?.unwrap_or(DEFAULT_FLIP_TEX_COORDS);
     let data = read_obj(&path, flip_tex).map_err(mesh_err(node))?;
     let mesh = Mesh::from_data(data, to_world, flip, face_normals).map_err(mesh_err(node))?;
     Ok(Shape::Mesh(mesh))
@@ -75,7 +75,7 @@ fn ply(
     flip: bool,
 ) -> Result<Shape, LoadError> {
     let path = mesh_file(b, node, "filename")?;
-    let face_normals = node.props.get_bool("face_normals")?.unwrap_or(false);
+    let face_normals = node.props.get_bool("face_normals")?.unwrap_or(Mesh::DEFAULT_FACE_NORMALS);
     let data = read_ply(&path).map_err(mesh_err(node))?;
     let mesh = Mesh::from_data(data, to_world, flip, face_normals).map_err(mesh_err(node))?;
     Ok(Shape::Mesh(mesh))
@@ -105,8 +105,8 @@ fn sphere(
     flip: bool,
 ) -> Result<Shape, LoadError> {
     let p = &node.props;
-    let center = p.get_point("center")?.unwrap_or(Vec3::ZERO);
-    let radius = p.get_float("radius")?.unwrap_or(1.0);
+    let center = p.get_point("center")?.unwrap_or(Sphere::DEFAULT_CENTER);
+    let radius = p.get_float("radius")?.unwrap_or(Sphere::DEFAULT_RADIUS);
     if !(radius.is_finite() && radius != 0.0) {
         return Err(LoadError::at(
             p.position("radius").unwrap_or(&node.pos),
@@ -123,9 +123,9 @@ fn cylinder(
     flip: bool,
 ) -> Result<Shape, LoadError> {
     let p = &node.props;
-    let p0 = p.get_point("p0")?.unwrap_or(Vec3::ZERO);
-    let p1 = p.get_point("p1")?.unwrap_or(Vec3::Z);
-    let radius = p.get_float("radius")?.unwrap_or(1.0);
+    let p0 = p.get_point("p0")?.unwrap_or(Cylinder::DEFAULT_P0);
+    let p1 = p.get_point("p1")?.unwrap_or(Cylinder::DEFAULT_P1);
+    let radius = p.get_float("radius")?.unwrap_or(Cylinder::DEFAULT_RADIUS);
     let cylinder = Cylinder::new(p0, p1, radius, to_world, flip).map_err(shape_err(node))?;
     Ok(Shape::Cylinder(cylinder))
 }
@@ -134,7 +134,7 @@ fn cylinder(
 pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadError> {
     let p = &node.props;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
-    let flip_normals = p.get_bool("flip_normals")?.unwrap_or(false);
+    let flip_normals = p.get_bool("flip_normals")?.unwrap_or(shape::DEFAULT_FLIP_NORMALS);
     let shape = lookup(SHAPES, node)?(b, node, &to_world, flip_normals)?;
     if !shape.surface_area().is_finite() {
         return Err(LoadError::at(

@@ -100,16 +100,16 @@ fn bitmap(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
     let filter = choice(
         node,
         "filter_type",
-        FilterType::Bilinear,
+        FilterType::default(),
         &[("bilinear", FilterType::Bilinear), ("nearest", FilterType::Nearest)],
     )?;
     let wrap = choice(
         node,
         "wrap_mode",
-        WrapMode::Repeat,
+        WrapMode::default(),
         &[("repeat", WrapMode::Repeat), ("mirror", WrapMode::Mirror), ("clamp", WrapMode::Clamp)],
     )?;
-    let raw = p.get_bool("raw")?.unwrap_or(false);
+    let raw = p.get_bool("raw")?.unwrap_or(Bitmap::DEFAULT_RAW);
     // storage precision and CUDA texture hardware: no effect on steradian's results
     choice(node, "format", (), &[("auto", ()), ("variant", ()), ("fp16", ())])?;
     p.get_bool("accel")?;
@@ -126,7 +126,7 @@ fn bitmap(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
 }
 
 fn checkerboard(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
-    let color0 = texture_param(b, node, "color0", Some(0.4))?;
-    let color1 = texture_param(b, node, "color1", Some(0.2))?;
+    let color0 = texture_param(b, node, "color0", Some(Checkerboard::DEFAULT_COLOR0))?;
+    let color1 = texture_param(b, node, "color1", Some(Checkerboard::DEFAULT_COLOR1))?;
     Ok(Texture::Checkerboard(Checkerboard::new(color0, color1, to_uv(node)?)))
 }

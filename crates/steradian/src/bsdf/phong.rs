@@ -59,6 +59,13 @@ fn channel_max(t: &Texture) -> Spectrum {
 }
 
 impl Phong {
+    /// Default `diffuse_reflectance` r_d (Mitsuba 0.6's; dimensionless).
+    pub const DEFAULT_DIFFUSE_REFLECTANCE: f32 = 0.5;
+    /// Default `specular_reflectance` r_s (Mitsuba 0.6's; dimensionless).
+    pub const DEFAULT_SPECULAR_REFLECTANCE: f32 = 0.2;
+    /// Default `exponent` n (Mitsuba 0.6's).
+    pub const DEFAULT_EXPONENT: f32 = 30.0;
+
     /// The BRDF with its parameters checked: n ≥ 0 finite, reflectances ≥ 0, and
     /// r_d + r_s ≤ 1 in every channel (energy conservation; the message gives the bound). A
     /// negative reflectance is reported against itself (and the other reflectance as

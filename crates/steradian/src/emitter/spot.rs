@@ -33,6 +33,13 @@ pub struct SpotLight {
 }
 
 impl SpotLight {
+    /// Default `intensity` on the axis (W/sr; Mitsuba's).
+    pub const DEFAULT_INTENSITY: f32 = 1.0;
+    /// Default `cutoff_angle`, in degrees as the scene gives it (Mitsuba's).
+    pub const DEFAULT_CUTOFF_ANGLE: f32 = 20.0;
+    /// Default `beam_width` as a fraction of `cutoff_angle` (Mitsuba's 3/4).
+    pub const DEFAULT_BEAM_WIDTH_RATIO: f32 = 0.75;
+
     /// `cutoff` and `beam_width` in radians.
     pub fn new(
         to_world: &Transform,

@@ -17,7 +17,8 @@ pub use light_selection::LightSelection;
 pub use measure::{measure, Measurement};
 pub use path::{
     parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LastVertex,
-    PathTracer, DEFAULT_BRANCHES, DEFAULT_RR_SCALE, MAX_BRANCHES,
+    PathTracer, DEFAULT_BRANCHES, DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
+    MAX_BRANCHES,
 };
 pub use render::{render, PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};
 

@@ -91,9 +91,11 @@ use crate::scene::Scene;
 use crate::shape::{is_positive, SurfacePoint};
 use crate::Spectrum;
 
-/// Whether directly visible emitters are drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Whether directly visible emitters are drawn (`hide_emitters`; default visible, as in
+/// Mitsuba).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum EmitterVisibility {
+    #[default]
     Visible,
     Hidden,
 }
@@ -125,11 +127,13 @@ pub enum LastVertex {
     Mis,
 }
 
-/// The number of paths that continue from a camera ray's first hit.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The number of paths that continue from a camera ray's first hit (`branches`; default
+/// [`Branches::Auto`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Branches {
     /// Chosen per render from a short pilot (`branching.rs`); [`DEFAULT_BRANCHES`] where no
     /// pilot runs.
+    #[default]
     Auto,
     /// This many (1 to [`MAX_BRANCHES`]; 1 = Mitsuba's estimator).
     Fixed(u32),
@@ -149,16 +153,22 @@ impl Branches {
 impl Default for PathTracer {
     fn default() -> Self {
         PathTracer {
-            max_depth: None,
-            rr_depth: 5,
+            max_depth: DEFAULT_MAX_DEPTH,
+            rr_depth: DEFAULT_RR_DEPTH,
             rr_scale: DEFAULT_RR_SCALE,
-            emitters: EmitterVisibility::Visible,
-            light_selection: LightSelection::Uniform,
-            branches: Branches::Auto,
+            emitters: EmitterVisibility::default(),
+            light_selection: LightSelection::default(),
+            branches: Branches::default(),
             last_vertex: LastVertex::default(),
         }
     }
 }
+
+/// `max_depth` where the scene does not set it: unbounded (Mitsuba's −1).
+pub const DEFAULT_MAX_DEPTH: Option<u32> = None;
+
+/// `rr_depth` where the scene does not set it (Mitsuba's).
+pub const DEFAULT_RR_DEPTH: u32 = 5;
 
 /// κ of Russian roulette's survival probability, where the scene does not set `rr_scale`
 /// (module docs; Mitsuba's is 1).

@@ -4,9 +4,10 @@ use crate::param::ParamError;
 use crate::shape::is_positive;
 use std::fmt;
 
-/// Which image axis a given `fov` applies to (`fov_axis`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Which image axis a given `fov` applies to (`fov_axis`; default `x`, as in Mitsuba).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum FovAxis {
+    #[default]
     X,
     Y,
     Diagonal,
@@ -49,6 +50,9 @@ pub enum FieldOfView {
 }
 
 impl FieldOfView {
+    /// Default `focal_length` without `fov` (mm of a 35 mm film equivalent; Mitsuba's).
+    pub const DEFAULT_FOCAL_LENGTH: f32 = 50.0;
+
     /// The horizontal field of view in radians for an image of `width`×`height` pixels.
     pub fn x_fov(&self, width: u32, height: u32) -> Result<f32, ParamError> {
         let aspect = width as f64 / height as f64;

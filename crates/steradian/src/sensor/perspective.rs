@@ -55,6 +55,12 @@ pub(super) fn validate(
 }
 
 impl Perspective {
+    /// Default `near_clip` (m; Mitsuba's); `thinlens` shares it.
+    pub const DEFAULT_NEAR_CLIP: f32 = 0.01;
+    /// Default `far_clip` (m; Mitsuba's); `thinlens` shares it, and `focus_distance` defaults
+    /// to the far clip.
+    pub const DEFAULT_FAR_CLIP: f32 = 1e4;
+
     /// `x_fov` in radians (see [`super::FieldOfView::x_fov`]); `aspect` = width/height.
     pub fn new(
         to_world: Transform,

@@ -7,7 +7,7 @@ use std::sync::Arc;
 use steradian::geometry::Transform;
 use steradian::scene::ShapeBinding;
 use steradian::shape::{
-    self, read_obj, read_ply, Cylinder, Disk, Mesh, Rectangle, Shape, ShapeError, Sphere,
+    self, read_obj, read_ply, Cylinder, Disk, Mesh, MeshData, Rectangle, Shape, ShapeError, Sphere,
     DEFAULT_FLIP_TEX_COORDS,
 };
 
@@ -15,8 +15,17 @@ use super::{emitters, lookup, Builder, Plugins};
 use crate::error::LoadError;
 use crate::tree::{ObjectTag, PluginNode};
 
-/// Builds one shape from its node, given its `to_world` and `flip_normals`.
-type BuildShape = fn(&Builder, &PluginNode, &Transform, bool) -> Result<Shape, LoadError>;
+/// What a shape builder reads: the scene being built (for file paths), the shape's node, and
+/// the `to_world` and `flip_normals` every shape has.
+pub(super) struct ShapeArgs<'a> {
+    b: &'a Builder,
+    node: &'a PluginNode,
+    to_world: Transform,
+    flip: bool,
+}
+
+/// Builds one shape from its node.
+type BuildShape = fn(&ShapeArgs) -> Result<Shape, LoadError>;
 
 /// Every shape plugin, by Mitsuba `type`.
 pub(super) const SHAPES: &Plugins<BuildShape> = &[
@@ -44,67 +53,60 @@ fn mesh_err(node: &PluginNode) -> impl Fn(ShapeError) -> LoadError + '_ {
     }
 }
 
-/// The mesh file named by the required string property `name`.
-fn mesh_file(b: &Builder, node: &PluginNode, name: &str) -> Result<PathBuf, LoadError> {
+/// The mesh file named by the required string property `filename`.
+fn mesh_file(s: &ShapeArgs) -> Result<PathBuf, LoadError> {
+    let node = s.node;
     let file = node
         .props
-        .get_string(name)?
-        .ok_or_else(|| LoadError::at(&node.pos, format!("{}: missing '{name}'", node.desc())))?;
-    Ok(b.resolve_path(node, &file))
+        .get_string("filename")?
+        .ok_or_else(|| LoadError::at(&node.pos, format!("{}: missing 'filename'", node.desc())))?;
+    Ok(s.b.resolve_path(node, &file))
 }
 
-fn obj(
-    b: &Builder,
-    node: &PluginNode,
-    to_world: &Transform,
-    flip: bool,
+/// `face_normals` of `obj` and `ply`.
+fn face_normals(node: &PluginNode) -> Result<bool, LoadError> {
+    Ok(node.props.get_bool("face_normals")?.unwrap_or(Mesh::DEFAULT_FACE_NORMALS))
+}
+
+/// The mesh of a file's `data` (or the error reading it), errors placed at `filename`.
+fn mesh(
+    s: &ShapeArgs,
+    data: Result<MeshData, ShapeError>,
+    face_normals: bool,
 ) -> Result<Shape, LoadError> {
-    let p = &node.props;
-    let path = mesh_file(b, node, "filename")?;
-    let face_normals = p.get_bool("face_normals")?.unwrap_or(Mesh::DEFAULT_FACE_NORMALS);
-    let flip_tex = p.get_bool("flip_tex_coords")?.unwrap_or(DEFAULT_FLIP_TEX_COORDS);
-    let data = read_obj(&path, flip_tex).map_err(mesh_err(node))?;
-    let mesh = Mesh::from_data(data, to_world, flip, face_normals).map_err(mesh_err(node))?;
+    let data = data.map_err(mesh_err(s.node))?;
+    let mesh =
+        Mesh::from_data(data, &s.to_world, s.flip, face_normals).map_err(mesh_err(s.node))?;
     Ok(Shape::Mesh(mesh))
 }
 
-fn ply(
-    b: &Builder,
-    node: &PluginNode,
-    to_world: &Transform,
-    flip: bool,
-) -> Result<Shape, LoadError> {
-    let path = mesh_file(b, node, "filename")?;
-    let face_normals = node.props.get_bool("face_normals")?.unwrap_or(Mesh::DEFAULT_FACE_NORMALS);
-    let data = read_ply(&path).map_err(mesh_err(node))?;
-    let mesh = Mesh::from_data(data, to_world, flip, face_normals).map_err(mesh_err(node))?;
-    Ok(Shape::Mesh(mesh))
+fn obj(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let path = mesh_file(s)?;
+    let face_normals = face_normals(s.node)?;
+    let flip_tex = s.node.props.get_bool("flip_tex_coords")?.unwrap_or(DEFAULT_FLIP_TEX_COORDS);
+    mesh(s, read_obj(&path, flip_tex), face_normals)
 }
 
-fn rectangle(
-    _: &Builder,
-    _: &PluginNode,
-    to_world: &Transform,
-    flip: bool,
-) -> Result<Shape, LoadError> {
-    Ok(Shape::Rectangle(Rectangle::new(to_world, flip)))
+fn ply(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let path = mesh_file(s)?;
+    let face_normals = face_normals(s.node)?;
+    mesh(s, read_ply(&path), face_normals)
 }
 
-fn disk(_: &Builder, _: &PluginNode, to_world: &Transform, flip: bool) -> Result<Shape, LoadError> {
-    Ok(Shape::Disk(Disk::new(to_world, flip)))
+fn rectangle(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Rectangle(Rectangle::new(&s.to_world, s.flip)))
 }
 
-fn cube(_: &Builder, _: &PluginNode, to_world: &Transform, flip: bool) -> Result<Shape, LoadError> {
-    Ok(Shape::Mesh(shape::cube(to_world, flip)))
+fn disk(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Disk(Disk::new(&s.to_world, s.flip)))
 }
 
-fn sphere(
-    _: &Builder,
-    node: &PluginNode,
-    to_world: &Transform,
-    flip: bool,
-) -> Result<Shape, LoadError> {
-    let p = &node.props;
+fn cube(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Mesh(shape::cube(&s.to_world, s.flip)))
+}
+
+fn sphere(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let (p, node) = (&s.node.props, s.node);
     let center = p.get_point("center")?.unwrap_or(Sphere::DEFAULT_CENTER);
     let radius = p.get_float("radius")?.unwrap_or(Sphere::DEFAULT_RADIUS);
     if !(radius.is_finite() && radius != 0.0) {
@@ -113,20 +115,15 @@ fn sphere(
             format!("{}: radius must be non-zero and finite, got {radius}", node.desc()),
         ));
     }
-    Ok(Shape::Sphere(Sphere::new(center, radius, to_world, flip)))
+    Ok(Shape::Sphere(Sphere::new(center, radius, &s.to_world, s.flip)))
 }
 
-fn cylinder(
-    _: &Builder,
-    node: &PluginNode,
-    to_world: &Transform,
-    flip: bool,
-) -> Result<Shape, LoadError> {
-    let p = &node.props;
+fn cylinder(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let p = &s.node.props;
     let p0 = p.get_point("p0")?.unwrap_or(Cylinder::DEFAULT_P0);
     let p1 = p.get_point("p1")?.unwrap_or(Cylinder::DEFAULT_P1);
     let radius = p.get_float("radius")?.unwrap_or(Cylinder::DEFAULT_RADIUS);
-    let cylinder = Cylinder::new(p0, p1, radius, to_world, flip).map_err(shape_err(node))?;
+    let cylinder = Cylinder::new(p0, p1, radius, &s.to_world, s.flip).map_err(shape_err(s.node))?;
     Ok(Shape::Cylinder(cylinder))
 }
 
@@ -135,7 +132,8 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
     let p = &node.props;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let flip_normals = p.get_bool("flip_normals")?.unwrap_or(shape::DEFAULT_FLIP_NORMALS);
-    let shape = lookup(SHAPES, node)?(b, node, &to_world, flip_normals)?;
+    let build_shape = lookup(SHAPES, node)?;
+    let shape = build_shape(&ShapeArgs { b, node, to_world, flip: flip_normals })?;
     if !shape.surface_area().is_finite() {
         return Err(LoadError::at(
             &node.pos,

@@ -299,6 +299,19 @@ impl Parser {
         Ok(name)
     }
 
+    /// The slot an object or `<ref>` with an optional `name` takes in `parent`, claimed.
+    fn optional_slot(
+        &self,
+        src: &Src,
+        attrs: &Attrs,
+        parent: &mut Builder,
+    ) -> Result<Option<String>, LoadError> {
+        let Some(a) = attrs.get("name") else { return Ok(None) };
+        let name = self.slot_name(src, a, parent)?;
+        parent.claim(&name, &attrs.pos)?;
+        Ok(Some(name))
+    }
+
     fn parse_element(
         &mut self,
         src: &Src,
@@ -331,14 +344,7 @@ impl Parser {
                 self.no_content(src, el, "<ref>")?;
                 attrs.allow(&["id", "name"])?;
                 let id = attrs.require("id")?.value.clone();
-                let name = match attrs.get("name") {
-                    Some(a) => {
-                        let n = self.slot_name(src, a, parent)?;
-                        parent.claim(&n, &attrs.pos)?;
-                        Some(n)
-                    }
-                    None => None,
-                };
+                let name = self.optional_slot(src, &attrs, parent)?;
                 let id = if src.upgrade { upgrade::upgrade_id(&id) } else { id };
                 parent.children.push(RawChild::Ref { id, name, pos: attrs.pos.clone() });
                 Ok(())
@@ -405,14 +411,7 @@ impl Parser {
             Some(a) => Some(a.value.clone()),
             None => None,
         };
-        let name = match attrs.get("name") {
-            Some(a) => {
-                let n = self.slot_name(src, a, parent)?;
-                parent.claim(&n, &attrs.pos)?;
-                Some(n)
-            }
-            None => None,
-        };
+        let name = self.optional_slot(src, attrs, parent)?;
         if let Some(id) = &id {
             if let Some(prev) = self.tree.declared_at(id) {
                 return Err(attrs.error(format!(

@@ -14,7 +14,8 @@
 //!    [`PluginNode::children_of`]). Accessors record what was read, so afterwards
 //!    [`PluginNode::check_all_used`] reports anything the plugin ignored, as Mitsuba's
 //!    "unreferenced property" error does.
-//! 3. **Plugins → `Scene`**: the registry assembles the core renderer's scene.
+//! 3. **Plugins → [`Job`]**: the registry assembles the core renderer's scene and its
+//!    integrator.
 //!
 //! ## Semantics (from Mitsuba 3's `src/core/xml.cpp`)
 //! - `<scene version="x.y.z">` is required; versions below 2.0.0 are upgraded
@@ -34,19 +35,37 @@
 //!   parallel to the view direction, singular matrices) are errors; spectrum wavelengths
 //!   must increase strictly; the root must be `<scene>`; an included file must have a
 //!   `<scene>` root; `<path>` and `<spectrum filename>` are not supported yet.
+//!
+//! ## Layers
+//! Each module imports only modules of lower layers, and the files inside a module import each
+//! other without cycles (`crates/steradian/tests/layers.rs` reads this list and checks the
+//! code against it):
+//! 1. `source`, `spectrum`: [`SourcePos`]; `wavelength:value` spectra → RGB.
+//! 2. `error`: [`LoadError`].
+//! 3. `properties`: typed, usage-tracked properties.
+//! 4. `tree`, `upgrade`: the parsed scene tree ([`PluginNode`], [`SceneNode`]); the pre-2.0
+//!    upgrade rules.
+//! 5. `xml`: stage 1, XML → tree (`parser` uses `attrs`, `params`, `values`, `transform`,
+//!    `link`).
+//! 6. `registry`: stage 2, tree → core plugins → [`Job`]; one file and one name → builder
+//!    table per family.
+//! 7. `verify`: the closed-form validation cases, loaded through the crate root.
+//!
+//! The crate root ([`load_file`], [`load_string`]) runs `xml` then `registry`.
 
 pub mod error;
 pub mod properties;
 pub mod source;
 pub mod spectrum;
-mod transform;
+pub mod tree;
 pub mod upgrade;
 pub mod xml;
 
 pub use error::LoadError;
 pub use properties::{Properties, PropertyValue, SpectrumValue};
 pub use source::SourcePos;
-pub use xml::{parse_file, parse_string, Child, ObjectTag, PluginNode, SceneNode};
+pub use tree::{Child, ObjectTag, PluginNode, SceneNode};
+pub use xml::{parse_file, parse_string};
 
 mod registry;
 

@@ -6,7 +6,13 @@
 //! renames the `<lookAt>` tag to `<lookat>`, renames ids that start with `_` to
 //! `ID<id>__UPGR`, renames `diffuse_reflectance` of `<bsdf type="diffuse">` to
 //! `reflectance`, and folds `uoffset`/`voffset`/`uscale`/`vscale` floats into a `to_uv`
-//! transform. The parser applies these rules while it reads the tree.
+//! transform ([`fold_uv`]). The parser applies these rules while it reads the tree.
+
+use glam::Vec3;
+use steradian::geometry::Transform;
+
+use crate::error::LoadError;
+use crate::properties::{Properties, PropertyValue};
 
 /// Does a file with this version need the upgrade?
 pub fn needs_upgrade(version: [u32; 3]) -> bool {
@@ -41,6 +47,37 @@ pub fn upgrade_id(id: &str) -> String {
     } else {
         id.to_string()
     }
+}
+
+/// Old scenes: `uoffset`/`voffset`/`uscale`/`vscale` floats of one object become its `to_uv`
+/// transform (placed where the first of them was).
+pub fn fold_uv(props: &mut Properties) -> Result<(), LoadError> {
+    let mut get = |n: &str| match props.remove(n) {
+        Some((PropertyValue::Float(f), pos)) => Some((f as f32, pos)),
+        Some((other, pos)) => {
+            // Not a float: put it back untouched.
+            let _ = props.insert(n, other, pos);
+            None
+        }
+        None => None,
+    };
+    let (uo, vo, us, vs) = (get("uoffset"), get("voffset"), get("uscale"), get("vscale"));
+    let pos = match [&uo, &vo, &us, &vs].into_iter().flatten().next() {
+        Some((_, p)) => p.clone(),
+        None => return Ok(()),
+    };
+    let off = Vec3::new(uo.map_or(0.0, |x| x.0), vo.map_or(0.0, |x| x.0), 0.0);
+    let scale = Vec3::new(us.map_or(1.0, |x| x.0), vs.map_or(1.0, |x| x.0), 1.0);
+    let mut t = Transform::IDENTITY;
+    if off != Vec3::ZERO {
+        t = t.then(&Transform::translate(off));
+    }
+    if scale != Vec3::ONE {
+        let s = Transform::scale(scale)
+            .map_err(|_| LoadError::at(&pos, "uscale/vscale of zero makes to_uv singular"))?;
+        t = t.then(&s);
+    }
+    props.insert("to_uv", PropertyValue::Transform(t), pos)
 }
 
 #[cfg(test)]

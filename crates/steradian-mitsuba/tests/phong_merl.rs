@@ -352,6 +352,11 @@ fn phong_parameter_errors() {
     let (p, e) = load_err("phong-energy-default", bsdf, &[]);
     check(&p, &e, 4, 5, &["reaches 1.4"]);
 
+    // a negative specular reflectance: the error is at it, not at the diffuse one before it
+    let bsdf = "<bsdf type=\"phong\">\n    <rgb name=\"diffuse_reflectance\" value=\"0.2\"/>\n    <rgb name=\"specular_reflectance\" value=\"0.1, -0.1, 0.1\"/>\n</bsdf>";
+    let (p, e) = load_err("phong-negative-specular", bsdf, &[]);
+    check(&p, &e, 5, 5, &["diffuse_reflectance and specular_reflectance must be ≥ 0"]);
+
     let (p, e) = load_err(
         "phong-unknown",
         "<bsdf type=\"phong\">\n    <float name=\"shininess\" value=\"2\"/>\n</bsdf>",

@@ -408,6 +408,17 @@ fn scaled_camera() {
 }
 
 #[test]
+fn clip_planes_out_of_order() {
+    // far_clip keeps its default (10000): the error is at the near_clip the scene set
+    let e = err(&sensor_scene("<float name=\"near_clip\" value=\"20000\"/>"));
+    check(&e, 3, 5, &["far_clip (10000) must exceed near_clip (20000)"]);
+    let xml = sensor_scene(
+        "<float name=\"near_clip\" value=\"2\"/>\n    <float name=\"far_clip\" value=\"1\"/>",
+    );
+    check(&err(&xml), 4, 5, &["far_clip (1) must exceed near_clip (2)"]);
+}
+
+#[test]
 fn thinlens_without_aperture() {
     let e = err(&scene("<sensor type=\"thinlens\" id=\"cam\">\n  <float name=\"focus_distance\" value=\"3\"/>\n</sensor>"));
     check(&e, 2, 1, &["<sensor type=\"thinlens\" id=\"cam\">: missing 'aperture_radius'"]);

@@ -22,7 +22,8 @@
 //! ## Layers
 //! Each module imports only modules of lower layers, and the files inside a module import each
 //! other without cycles (`tests/layers.rs` reads this list and checks the code against it):
-//! 1. `spectrum`, `radiometry`: RGB quantities, units and the closed forms of radiometry.
+//! 1. `spectrum`, `radiometry`, `param`: RGB quantities, units and the closed forms of
+//!    radiometry; the typed error of a plugin parameter.
 //! 2. `geometry`: rays, frames, transforms, bounding boxes, ray–triangle intersection.
 //! 3. `sampling`: random and low-discrepancy numbers, warps, discrete distributions.
 //! 4. `film`: images, reconstruction filters, image blocks, EXR and PNG files.
@@ -42,6 +43,7 @@ pub mod emitter;
 pub mod film;
 pub mod geometry;
 pub mod integrator;
+pub mod param;
 pub mod radiometry;
 pub mod render;
 pub mod sampling;

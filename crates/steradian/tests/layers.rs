@@ -1,4 +1,4 @@
-//! Purpose: the module map in each library's `lib.rs` is the code's. Every module imports only
+//! Purpose: the module map in the core's and the loader's `lib.rs` is the code's. Every module imports only
 //! modules of lower layers (as the numbered list under "## Layers" in `lib.rs` orders them),
 //! and the files inside each module import each other without cycles.
 //!
@@ -276,6 +276,11 @@ fn check_crate(src: &Path) {
 #[test]
 fn core_modules_import_only_lower_layers() {
     check_crate(&Path::new(env!("CARGO_MANIFEST_DIR")).join("src"));
+}
+
+#[test]
+fn loader_modules_import_only_lower_layers() {
+    check_crate(&Path::new(env!("CARGO_MANIFEST_DIR")).join("../steradian-mitsuba/src"));
 }
 
 #[test]

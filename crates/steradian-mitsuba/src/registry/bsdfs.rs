@@ -5,8 +5,6 @@
 //! transmittances (`phong`'s too), `mask`'s `opacity` and `blendbsdf`'s `weight` take a value or
 //! a texture; IORs and roughness are values.
 
-use std::sync::Arc;
-
 use steradian::bsdf::ior::{conductor_preset, lookup_ior};
 use steradian::bsdf::{
     BlendBsdf, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, InternalScattering, Mask,
@@ -18,28 +16,10 @@ use steradian::texture::Texture;
 use steradian::Spectrum;
 
 use super::textures::{self, texture_param};
-use super::{at, at_property, unknown_type, Builder};
+use super::{at, at_param, lookup, Builder, Plugins};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
-use crate::xml::{ObjectTag, PluginNode};
-
-const KNOWN: &[&str] = &[
-    "diffuse",
-    "twosided",
-    "conductor",
-    "roughconductor",
-    "dielectric",
-    "thindielectric",
-    "roughdielectric",
-    "plastic",
-    "roughplastic",
-    "phong",
-    "merl",
-    "mask",
-    "blendbsdf",
-    "bumpmap",
-    "normalmap",
-];
+use crate::tree::{ObjectTag, PluginNode};
 
 /// The nested BSDFs of `node` (named or not), built, in document order.
 fn nested_bsdfs(b: &Builder, node: &PluginNode) -> Result<Vec<Bsdf>, LoadError> {
@@ -93,9 +73,10 @@ fn ior(node: &PluginNode, name: &str, default: &str) -> Result<f32, LoadError> {
     Ok(v)
 }
 
-/// int_ior/ext_ior with Mitsuba's defaults (bk7 / air).
+/// int_ior/ext_ior of the dielectrics, with their defaults.
 fn relative_ior(node: &PluginNode) -> Result<f32, LoadError> {
-    Ok(ior(node, "int_ior", "bk7")? / ior(node, "ext_ior", "air")?)
+    Ok(ior(node, "int_ior", Dielectric::DEFAULT_INT_IOR)?
+        / ior(node, "ext_ior", Dielectric::DEFAULT_EXT_IOR)?)
 }
 
 /// A constant spectrum parameter with a default.
@@ -106,12 +87,15 @@ fn spectrum(node: &PluginNode, name: &str, default: f32) -> Result<Spectrum, Loa
 /// Conductor IOR: `material` preset (default `none`: η 0, k 1) or explicit `eta`/`k`.
 fn conductor_ior(node: &PluginNode) -> Result<(Spectrum, Spectrum), LoadError> {
     let p = &node.props;
-    let material = p.get_string("material")?.unwrap_or_else(|| "none".into());
+    let material = p.get_string("material")?.unwrap_or_else(|| Conductor::DEFAULT_MATERIAL.into());
     if p.contains("eta") || material == "none" {
         if material != "none" {
             return Err(at(node)("specify either (eta, k) or material, not both".into()));
         }
-        Ok((spectrum(node, "eta", 0.0)?, spectrum(node, "k", 1.0)?))
+        Ok((
+            spectrum(node, "eta", Conductor::DEFAULT_ETA)?,
+            spectrum(node, "k", Conductor::DEFAULT_K)?,
+        ))
     } else {
         conductor_preset(&material).map_err(at(node))
     }
@@ -130,7 +114,8 @@ fn microfacet(
 ) -> Result<(MicrofacetDistribution, AlphaTextures), LoadError> {
     let p = &node.props;
     let kind = match p.get_string("distribution")?.map(|s| s.to_lowercase()).as_deref() {
-        None | Some("beckmann") => MicrofacetKind::Beckmann,
+        None => MicrofacetKind::default(),
+        Some("beckmann") => MicrofacetKind::Beckmann,
         Some("ggx") => MicrofacetKind::Ggx,
         Some(other) => {
             return Err(at(node)(format!(
@@ -138,15 +123,17 @@ fn microfacet(
             )))
         }
     };
-    let sample_visible = p.get_bool("sample_visible")?.unwrap_or(true);
+    let sample_visible =
+        p.get_bool("sample_visible")?.unwrap_or(MicrofacetDistribution::DEFAULT_SAMPLE_VISIBLE);
     let given = |n: &str| {
         p.contains(n) || (textures && node.children.iter().any(|c| c.name.as_deref() == Some(n)))
     };
     let alpha = |n: &str| -> Result<Texture, LoadError> {
         if textures {
-            texture_param(b, node, n, Some(0.1))
+            texture_param(b, node, n, Some(MicrofacetDistribution::DEFAULT_ALPHA))
         } else {
-            Ok(Texture::Constant(Spectrum::splat(p.get_float(n)?.unwrap_or(0.1))))
+            let alpha = p.get_float(n)?.unwrap_or(MicrofacetDistribution::DEFAULT_ALPHA);
+            Ok(Texture::Constant(Spectrum::splat(alpha)))
         }
     };
     let (tu, tv) = if given("alpha_u") || given("alpha_v") {
@@ -172,169 +159,233 @@ fn microfacet(
             }
             Ok((MicrofacetDistribution::new(kind, au, av, sample_visible), None))
         }
-        _ => Ok((MicrofacetDistribution::new(kind, 0.1, 0.1, sample_visible), Some((tu, tv)))),
+        _ => {
+            // α placeholders: the textures give the roughness at each point
+            let a = MicrofacetDistribution::DEFAULT_ALPHA;
+            Ok((MicrofacetDistribution::new(kind, a, a, sample_visible), Some((tu, tv))))
+        }
     }
 }
 
+/// Builds one BSDF from its node.
+type BuildBsdf = fn(&Builder, &PluginNode) -> Result<Bsdf, LoadError>;
+
+/// Every BSDF plugin, by Mitsuba `type`.
+pub(super) const BSDFS: &Plugins<BuildBsdf> = &[
+    ("diffuse", diffuse),
+    ("twosided", twosided),
+    ("conductor", conductor),
+    ("roughconductor", roughconductor),
+    ("dielectric", dielectric),
+    ("thindielectric", thindielectric),
+    ("roughdielectric", roughdielectric),
+    ("plastic", plastic),
+    ("roughplastic", roughplastic),
+    ("phong", phong),
+    ("merl", merl),
+    ("mask", mask),
+    ("blendbsdf", blendbsdf),
+    ("bumpmap", bumpmap),
+    ("normalmap", normalmap),
+];
+
 /// Builds a BSDF node (not cached: use `Builder::bsdf_index` for scene BSDFs).
-pub(crate) fn build(b: &Builder, node: &Arc<PluginNode>) -> Result<Bsdf, LoadError> {
-    let p = &node.props;
-    let bsdf = match node.plugin_type.as_str() {
-        "diffuse" => Bsdf::Diffuse(Diffuse::new(texture_param(b, node, "reflectance", Some(0.5))?)),
-        "twosided" => {
-            let children = node.children_of(ObjectTag::Bsdf);
-            let built: Vec<Bsdf> =
-                children.iter().map(|c| build(b, &c.node)).collect::<Result<_, _>>()?;
-            if built.iter().any(|b| matches!(b, Bsdf::TwoSided(_))) {
-                return Err(LoadError::at(
-                    &node.pos,
-                    "twosided: a nested twosided BSDF makes no sense",
-                ));
-            }
-            match <[Bsdf; 1]>::try_from(built.clone()) {
-                Ok([one]) => Bsdf::TwoSided(TwoSided::new(one.clone(), one)),
-                Err(_) => match <[Bsdf; 2]>::try_from(built) {
-                    Ok([front, back]) => Bsdf::TwoSided(TwoSided::new(front, back)),
-                    Err(v) => {
-                        return Err(LoadError::at(
-                            &node.pos,
-                            format!("twosided: expects one or two nested BSDFs, got {}", v.len()),
-                        ))
-                    }
-                },
-            }
-        }
-        "conductor" => {
-            let (eta, k) = conductor_ior(node)?;
-            Bsdf::Conductor(Conductor::new(
-                eta,
-                k,
-                texture_param(b, node, "specular_reflectance", Some(1.0))?,
-            ))
-        }
-        "roughconductor" => {
-            let (eta, k) = conductor_ior(node)?;
-            let (d, alpha) = microfacet(b, node, true)?;
-            let mut c = RoughConductor::new(
-                d,
-                eta,
-                k,
-                texture_param(b, node, "specular_reflectance", Some(1.0))?,
-            );
-            if let Some((u, v)) = alpha {
-                c = c.with_alpha_textures(u, v);
-            }
-            Bsdf::RoughConductor(c)
-        }
-        "dielectric" | "thindielectric" | "roughdielectric" => {
-            let eta = relative_ior(node)?;
-            let r = texture_param(b, node, "specular_reflectance", Some(1.0))?;
-            let t = texture_param(b, node, "specular_transmittance", Some(1.0))?;
-            match node.plugin_type.as_str() {
-                "dielectric" => Bsdf::Dielectric(Dielectric::new(eta, r, t)),
-                "thindielectric" => Bsdf::ThinDielectric(ThinDielectric::new(eta, r, t)),
-                _ => {
-                    if eta == 1.0 {
-                        return Err(at(node)("the interior and exterior IORs must differ".into()));
-                    }
-                    let (d, alpha) = microfacet(b, node, true)?;
-                    let mut rd = RoughDielectric::new(d, eta, r, t);
-                    if let Some((u, v)) = alpha {
-                        rd = rd.with_alpha_textures(u, v);
-                    }
-                    Bsdf::RoughDielectric(rd)
-                }
-            }
-        }
-        "plastic" | "roughplastic" => {
-            // Mitsuba: plastic coatings default to polypropylene in air.
-            let eta = ior(node, "int_ior", "polypropylene")? / ior(node, "ext_ior", "air")?;
-            let diffuse = texture_param(b, node, "diffuse_reflectance", Some(0.5))?;
-            let specular = texture_param(b, node, "specular_reflectance", Some(1.0))?;
-            let internal = if p.get_bool("nonlinear")?.unwrap_or(false) {
-                InternalScattering::Nonlinear
-            } else {
-                InternalScattering::Linear
-            };
-            if node.plugin_type == "plastic" {
-                Bsdf::Plastic(Plastic::new(eta, diffuse, specular, internal))
-            } else {
-                if eta == 1.0 {
-                    return Err(at(node)("the interior and exterior IORs must differ".into()));
-                }
-                let (d, _) = microfacet(b, node, false)?;
-                if !d.is_isotropic() {
-                    return Err(at(node)(
-                        "roughplastic supports isotropic roughness only (use 'alpha')".into(),
-                    ));
-                }
-                Bsdf::RoughPlastic(RoughPlastic::new(d, eta, diffuse, specular, internal))
-            }
-        }
-        "phong" => {
-            let diffuse = texture_param(b, node, "diffuse_reflectance", Some(0.5))?;
-            let specular = texture_param(b, node, "specular_reflectance", Some(0.2))?;
-            let exponent = p.get_float("exponent")?.unwrap_or(30.0);
-            Phong::new(diffuse, specular, exponent).map(Bsdf::Phong).map_err(at_property(
-                node,
-                &["exponent", "diffuse_reflectance", "specular_reflectance"],
-            ))?
-        }
-        "merl" => {
-            let file = p
-                .get_string("filename")?
-                .ok_or_else(|| at(node)("missing 'filename' (the MERL .binary file)".into()))?;
-            let path = b.resolve_path(node, &file);
-            // errors reading the file are placed at its `filename`
-            let table = MerlTable::read(&path).map_err(|m| {
-                LoadError::at(
-                    p.position("filename").unwrap_or(&node.pos),
-                    format!("{}: {m}", node.desc()),
-                )
-            })?;
-            Bsdf::Merl(Merl::new(table))
-        }
-        "mask" => {
-            let opacity = texture_param(b, node, "opacity", Some(0.5))?;
-            Bsdf::Mask(Mask::new(opacity, one_nested(b, node)?))
-        }
-        "blendbsdf" => {
-            let weight = texture_param(b, node, "weight", None)?;
-            match <[Bsdf; 2]>::try_from(nested_bsdfs(b, node)?) {
-                Ok([b0, b1]) => Bsdf::BlendBsdf(BlendBsdf::new(weight, b0, b1)),
-                Err(v) => {
-                    return Err(at(node)(format!("expects two nested BSDFs, got {}", v.len())))
-                }
-            }
-        }
-        "bumpmap" => {
-            let textures = node.children_of(ObjectTag::Texture);
-            if textures.len() != 1 {
-                return Err(at(node)(format!(
-                    "expects exactly one nested texture (the height), got {}",
-                    textures.len()
-                )));
-            }
-            let height = textures::build(b, &textures[0].node)?;
-            let scale = p.get_float("scale")?.unwrap_or(1.0);
-            if !scale.is_finite() {
-                return Err(at(node)(format!("scale must be finite, got {scale}")));
-            }
-            let nested = one_nested(b, node)?;
-            Bsdf::BumpMap(
-                BumpMap::new(height, scale, nested, perturb_options(node)?).map_err(|m| {
-                    LoadError::at(textures[0].pos(), format!("{}: {m}", node.desc()))
-                })?,
-            )
-        }
-        "normalmap" => {
-            let normals = texture_param(b, node, "normalmap", None)?;
-            Bsdf::NormalMap(NormalMap::new(normals, one_nested(b, node)?, perturb_options(node)?))
-        }
-        _ => return Err(unknown_type(node, KNOWN)),
-    };
+pub(crate) fn build(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let bsdf = lookup(BSDFS, node)?(b, node)?;
     node.check_all_used()?;
     Ok(bsdf)
+}
+
+fn diffuse(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    Ok(Bsdf::Diffuse(Diffuse::new(texture_param(
+        b,
+        node,
+        "reflectance",
+        Some(Diffuse::DEFAULT_REFLECTANCE),
+    )?)))
+}
+
+fn twosided(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let children = node.children_of(ObjectTag::Bsdf);
+    let built: Vec<Bsdf> = children.iter().map(|c| build(b, &c.node)).collect::<Result<_, _>>()?;
+    if built.iter().any(|b| matches!(b, Bsdf::TwoSided(_))) {
+        return Err(LoadError::at(&node.pos, "twosided: a nested twosided BSDF makes no sense"));
+    }
+    match <[Bsdf; 1]>::try_from(built.clone()) {
+        Ok([one]) => Ok(Bsdf::TwoSided(TwoSided::new(one.clone(), one))),
+        Err(_) => match <[Bsdf; 2]>::try_from(built) {
+            Ok([front, back]) => Ok(Bsdf::TwoSided(TwoSided::new(front, back))),
+            Err(v) => Err(LoadError::at(
+                &node.pos,
+                format!("twosided: expects one or two nested BSDFs, got {}", v.len()),
+            )),
+        },
+    }
+}
+
+fn conductor(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let (eta, k) = conductor_ior(node)?;
+    let specular = Some(Conductor::DEFAULT_SPECULAR_REFLECTANCE);
+    Ok(Bsdf::Conductor(Conductor::new(
+        eta,
+        k,
+        texture_param(b, node, "specular_reflectance", specular)?,
+    )))
+}
+
+fn roughconductor(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let (eta, k) = conductor_ior(node)?;
+    let (d, alpha) = microfacet(b, node, true)?;
+    let specular = Some(Conductor::DEFAULT_SPECULAR_REFLECTANCE);
+    let mut c =
+        RoughConductor::new(d, eta, k, texture_param(b, node, "specular_reflectance", specular)?);
+    if let Some((u, v)) = alpha {
+        c = c.with_alpha_textures(u, v);
+    }
+    Ok(Bsdf::RoughConductor(c))
+}
+
+/// The relative IOR and the specular reflectance and transmittance of the dielectrics.
+fn dielectric_params(b: &Builder, node: &PluginNode) -> Result<(f32, Texture, Texture), LoadError> {
+    let eta = relative_ior(node)?;
+    let r = texture_param(
+        b,
+        node,
+        "specular_reflectance",
+        Some(Dielectric::DEFAULT_SPECULAR_REFLECTANCE),
+    )?;
+    let t = texture_param(
+        b,
+        node,
+        "specular_transmittance",
+        Some(Dielectric::DEFAULT_SPECULAR_TRANSMITTANCE),
+    )?;
+    Ok((eta, r, t))
+}
+
+fn dielectric(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let (eta, r, t) = dielectric_params(b, node)?;
+    Ok(Bsdf::Dielectric(Dielectric::new(eta, r, t)))
+}
+
+fn thindielectric(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let (eta, r, t) = dielectric_params(b, node)?;
+    Ok(Bsdf::ThinDielectric(ThinDielectric::new(eta, r, t)))
+}
+
+fn roughdielectric(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let (eta, r, t) = dielectric_params(b, node)?;
+    if eta == 1.0 {
+        return Err(at(node)("the interior and exterior IORs must differ".into()));
+    }
+    let (d, alpha) = microfacet(b, node, true)?;
+    let mut rd = RoughDielectric::new(d, eta, r, t);
+    if let Some((u, v)) = alpha {
+        rd = rd.with_alpha_textures(u, v);
+    }
+    Ok(Bsdf::RoughDielectric(rd))
+}
+
+/// The coating's relative IOR, the diffuse and specular reflectances and the internal
+/// scattering model of the plastics.
+fn plastic_params(
+    b: &Builder,
+    node: &PluginNode,
+) -> Result<(f32, Texture, Texture, InternalScattering), LoadError> {
+    let eta = ior(node, "int_ior", Plastic::DEFAULT_INT_IOR)?
+        / ior(node, "ext_ior", Plastic::DEFAULT_EXT_IOR)?;
+    let diffuse =
+        texture_param(b, node, "diffuse_reflectance", Some(Plastic::DEFAULT_DIFFUSE_REFLECTANCE))?;
+    let specular = texture_param(
+        b,
+        node,
+        "specular_reflectance",
+        Some(Plastic::DEFAULT_SPECULAR_REFLECTANCE),
+    )?;
+    let internal = if node.props.get_bool("nonlinear")?.unwrap_or(Plastic::DEFAULT_NONLINEAR) {
+        InternalScattering::Nonlinear
+    } else {
+        InternalScattering::Linear
+    };
+    Ok((eta, diffuse, specular, internal))
+}
+
+fn plastic(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let (eta, diffuse, specular, internal) = plastic_params(b, node)?;
+    Ok(Bsdf::Plastic(Plastic::new(eta, diffuse, specular, internal)))
+}
+
+fn roughplastic(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let (eta, diffuse, specular, internal) = plastic_params(b, node)?;
+    if eta == 1.0 {
+        return Err(at(node)("the interior and exterior IORs must differ".into()));
+    }
+    let (d, _) = microfacet(b, node, false)?;
+    if !d.is_isotropic() {
+        return Err(at(node)(
+            "roughplastic supports isotropic roughness only (use 'alpha')".into(),
+        ));
+    }
+    Ok(Bsdf::RoughPlastic(RoughPlastic::new(d, eta, diffuse, specular, internal)))
+}
+
+fn phong(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let diffuse =
+        texture_param(b, node, "diffuse_reflectance", Some(Phong::DEFAULT_DIFFUSE_REFLECTANCE))?;
+    let specular =
+        texture_param(b, node, "specular_reflectance", Some(Phong::DEFAULT_SPECULAR_REFLECTANCE))?;
+    let exponent = node.props.get_float("exponent")?.unwrap_or(Phong::DEFAULT_EXPONENT);
+    Phong::new(diffuse, specular, exponent).map(Bsdf::Phong).map_err(at_param(node))
+}
+
+fn merl(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let p = &node.props;
+    let file = p
+        .get_string("filename")?
+        .ok_or_else(|| at(node)("missing 'filename' (the MERL .binary file)".into()))?;
+    let path = b.resolve_path(node, &file);
+    // errors reading the file are placed at its `filename`
+    let table = MerlTable::read(&path).map_err(|m| {
+        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
+    })?;
+    Ok(Bsdf::Merl(Merl::new(table)))
+}
+
+fn mask(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let opacity = texture_param(b, node, "opacity", Some(Mask::DEFAULT_OPACITY))?;
+    Ok(Bsdf::Mask(Mask::new(opacity, one_nested(b, node)?)))
+}
+
+fn blendbsdf(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let weight = texture_param(b, node, "weight", None)?;
+    match <[Bsdf; 2]>::try_from(nested_bsdfs(b, node)?) {
+        Ok([b0, b1]) => Ok(Bsdf::BlendBsdf(BlendBsdf::new(weight, b0, b1))),
+        Err(v) => Err(at(node)(format!("expects two nested BSDFs, got {}", v.len()))),
+    }
+}
+
+fn bumpmap(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let textures = node.children_of(ObjectTag::Texture);
+    if textures.len() != 1 {
+        return Err(at(node)(format!(
+            "expects exactly one nested texture (the height), got {}",
+            textures.len()
+        )));
+    }
+    let height = textures::build(b, &textures[0].node)?;
+    let scale = node.props.get_float("scale")?.unwrap_or(BumpMap::DEFAULT_SCALE);
+    if !scale.is_finite() {
+        return Err(at(node)(format!("scale must be finite, got {scale}")));
+    }
+    let nested = one_nested(b, node)?;
+    let bump = BumpMap::new(height, scale, nested, perturb_options(node)?)
+        .map_err(|m| LoadError::at(textures[0].pos(), format!("{}: {m}", node.desc())))?;
+    Ok(Bsdf::BumpMap(bump))
+}
+
+fn normalmap(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let normals = texture_param(b, node, "normalmap", None)?;
+    Ok(Bsdf::NormalMap(NormalMap::new(normals, one_nested(b, node)?, perturb_options(node)?)))
 }
 
 #[cfg(test)]

@@ -7,11 +7,9 @@ use steradian::emitter::{
 use steradian::geometry::Transform;
 use steradian::{Spectrum, Vec3};
 
-use super::{at, at_property, unknown_type};
+use super::{at, at_param, lookup, Plugins};
 use crate::error::LoadError;
-use crate::xml::PluginNode;
-
-const STANDALONE: &[&str] = &["point", "spot", "directional", "constant"];
+use crate::tree::PluginNode;
 
 /// The `area` emitter of shape number `shape`.
 pub(crate) fn build_area(
@@ -25,7 +23,8 @@ pub(crate) fn build_area(
             format!("a shape can only carry an 'area' emitter, not '{}'", node.plugin_type),
         ));
     }
-    let radiance = super::textures::texture_param(b, node, "radiance", Some(1.0))?;
+    let radiance =
+        super::textures::texture_param(b, node, "radiance", Some(AreaLight::DEFAULT_RADIANCE))?;
     if let steradian::texture::Texture::Constant(v) = radiance {
         check_non_negative(node, "radiance", v)?;
     }
@@ -58,77 +57,89 @@ fn position_or_to_world(node: &PluginNode) -> Result<Transform, LoadError> {
     }
 }
 
+/// Builds one emitter declared at the scene level from its node.
+type BuildEmitter = fn(&PluginNode) -> Result<Emitter, LoadError>;
+
+/// Every emitter plugin declared at the scene level, by Mitsuba `type`. (`area` is the one
+/// emitter a shape carries: [`build_area`].)
+pub(super) const EMITTERS: &Plugins<BuildEmitter> =
+    &[("point", point), ("spot", spot), ("directional", directional), ("constant", constant)];
+
 /// An emitter declared at the scene level.
 pub(crate) fn build_standalone(node: &PluginNode) -> Result<Emitter, LoadError> {
-    let p = &node.props;
-    let emitter = match node.plugin_type.as_str() {
-        "point" => {
-            let intensity = p.get_spectrum("intensity")?.unwrap_or(Spectrum::ONE);
-            check_non_negative(node, "intensity", intensity)?;
-            let to_world = position_or_to_world(node)?;
-            Emitter::Point(PointLight::new(to_world.point(Vec3::ZERO), intensity))
-        }
-        "spot" => {
-            let intensity = p.get_spectrum("intensity")?.unwrap_or(Spectrum::ONE);
-            check_non_negative(node, "intensity", intensity)?;
-            let cutoff = p.get_float("cutoff_angle")?.unwrap_or(20.0);
-            let beam = p.get_float("beam_width")?.unwrap_or(cutoff * 0.75);
-            // Checked here in the user's degrees (the core's check, in radians, would echo
-            // 30° back as 30.000002°).
-            let prop_err = |name: &str, msg: String| {
-                LoadError::at(
-                    p.position(name).unwrap_or(&node.pos),
-                    format!("{}: {msg}", node.desc()),
-                )
-            };
-            if !(cutoff > 0.0 && cutoff <= 180.0) {
-                return Err(prop_err(
-                    "cutoff_angle",
-                    format!("cutoff_angle must lie in (0°, 180°], got {cutoff}°"),
-                ));
-            }
-            if !(beam > 0.0 && beam <= cutoff) {
-                let name = if p.contains("beam_width") { "beam_width" } else { "cutoff_angle" };
-                return Err(prop_err(
-                    name,
-                    format!("beam_width must lie in (0°, cutoff_angle = {cutoff}°], got {beam}°"),
-                ));
-            }
-            let to_world = p.get_transform("to_world")?.unwrap_or_default();
-            Emitter::Spot(
-                SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians())
-                    .map_err(at_property(node, &["beam_width", "cutoff_angle"]))?,
-            )
-        }
-        "directional" => {
-            let irradiance = p.get_spectrum("irradiance")?.unwrap_or(Spectrum::ONE);
-            check_non_negative(node, "irradiance", irradiance)?;
-            let direction = match (p.get_vector("direction")?, p.get_transform("to_world")?) {
-                (Some(_), Some(_)) => {
-                    return Err(LoadError::at(
-                        &node.pos,
-                        format!("{}: give only one of 'direction' and 'to_world'", node.desc()),
-                    ))
-                }
-                (Some(d), None) => d,
-                (None, Some(t)) => t.vector(Vec3::Z),
-                (None, None) => Vec3::Z,
-            };
-            Emitter::Directional(DirectionalLight::new(direction, irradiance).map_err(at(node))?)
-        }
-        "constant" => {
-            let radiance = p.get_spectrum("radiance")?.unwrap_or(Spectrum::ONE);
-            check_non_negative(node, "radiance", radiance)?;
-            Emitter::Constant(ConstantEnvironment::new(radiance))
-        }
-        "area" => {
-            return Err(LoadError::at(
-                &node.pos,
-                "an 'area' emitter must be nested inside the <shape> that emits",
-            ));
-        }
-        _ => return Err(unknown_type(node, STANDALONE)),
-    };
+    if node.plugin_type == "area" {
+        return Err(LoadError::at(
+            &node.pos,
+            "an 'area' emitter must be nested inside the <shape> that emits",
+        ));
+    }
+    let emitter = lookup(EMITTERS, node)?(node)?;
     node.check_all_used()?;
     Ok(emitter)
+}
+
+fn point(node: &PluginNode) -> Result<Emitter, LoadError> {
+    let default = Spectrum::splat(PointLight::DEFAULT_INTENSITY);
+    let intensity = node.props.get_spectrum("intensity")?.unwrap_or(default);
+    check_non_negative(node, "intensity", intensity)?;
+    let to_world = position_or_to_world(node)?;
+    Ok(Emitter::Point(PointLight::new(to_world.point(Vec3::ZERO), intensity)))
+}
+
+fn spot(node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let intensity =
+        p.get_spectrum("intensity")?.unwrap_or(Spectrum::splat(SpotLight::DEFAULT_INTENSITY));
+    check_non_negative(node, "intensity", intensity)?;
+    let cutoff = p.get_float("cutoff_angle")?.unwrap_or(SpotLight::DEFAULT_CUTOFF_ANGLE);
+    let beam = p.get_float("beam_width")?.unwrap_or(cutoff * SpotLight::DEFAULT_BEAM_WIDTH_RATIO);
+    // Checked here in the user's degrees (the core's check, in radians, would echo
+    // 30° back as 30.000002°).
+    let prop_err = |name: &str, msg: String| {
+        LoadError::at(p.position(name).unwrap_or(&node.pos), format!("{}: {msg}", node.desc()))
+    };
+    if !(cutoff > 0.0 && cutoff <= 180.0) {
+        return Err(prop_err(
+            "cutoff_angle",
+            format!("cutoff_angle must lie in (0°, 180°], got {cutoff}°"),
+        ));
+    }
+    if !(beam > 0.0 && beam <= cutoff) {
+        let name = if p.contains("beam_width") { "beam_width" } else { "cutoff_angle" };
+        return Err(prop_err(
+            name,
+            format!("beam_width must lie in (0°, cutoff_angle = {cutoff}°], got {beam}°"),
+        ));
+    }
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let spot = SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians())
+        .map_err(at_param(node))?;
+    Ok(Emitter::Spot(spot))
+}
+
+fn directional(node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let irradiance = p
+        .get_spectrum("irradiance")?
+        .unwrap_or(Spectrum::splat(DirectionalLight::DEFAULT_IRRADIANCE));
+    check_non_negative(node, "irradiance", irradiance)?;
+    let direction = match (p.get_vector("direction")?, p.get_transform("to_world")?) {
+        (Some(_), Some(_)) => {
+            return Err(LoadError::at(
+                &node.pos,
+                format!("{}: give only one of 'direction' and 'to_world'", node.desc()),
+            ))
+        }
+        (Some(d), None) => d,
+        (None, Some(t)) => t.vector(Vec3::Z),
+        (None, None) => DirectionalLight::DEFAULT_DIRECTION,
+    };
+    Ok(Emitter::Directional(DirectionalLight::new(direction, irradiance).map_err(at(node))?))
+}
+
+fn constant(node: &PluginNode) -> Result<Emitter, LoadError> {
+    let default = Spectrum::splat(ConstantEnvironment::DEFAULT_RADIANCE);
+    let radiance = node.props.get_spectrum("radiance")?.unwrap_or(default);
+    check_non_negative(node, "radiance", radiance)?;
+    Ok(Emitter::Constant(ConstantEnvironment::new(radiance)))
 }

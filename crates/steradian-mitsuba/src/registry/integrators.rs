@@ -2,21 +2,21 @@
 
 use steradian::emitter::LightSelection;
 use steradian::integrator::{
-    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, DEFAULT_RR_SCALE,
+    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility,
+    DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
 };
 use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
 
-use super::{at_property, unknown_type};
+use super::{at_param, lookup, Plugins};
 use crate::error::LoadError;
-use crate::xml::PluginNode;
+use crate::tree::PluginNode;
 
-const KNOWN: &[&str] = &["path", "direct"];
-
+/// `hide_emitters`.
 fn visibility(hide: Option<bool>) -> EmitterVisibility {
-    if hide.unwrap_or(false) {
-        EmitterVisibility::Hidden
-    } else {
-        EmitterVisibility::Visible
+    match hide {
+        None => EmitterVisibility::default(),
+        Some(true) => EmitterVisibility::Hidden,
+        Some(false) => EmitterVisibility::Visible,
     }
 }
 
@@ -33,7 +33,7 @@ fn count(node: &PluginNode, name: &str, default: i64) -> Result<u32, LoadError> 
 /// steradian's own `light_selection` parameter (default `uniform`, Mitsuba's rule).
 fn light_selection(node: &PluginNode) -> Result<LightSelection, LoadError> {
     match node.props.get_string("light_selection")? {
-        None => Ok(LightSelection::Uniform),
+        None => Ok(LightSelection::default()),
         Some(s) => LightSelection::parse(&s).map_err(|m| {
             LoadError::at(
                 node.props.position("light_selection").unwrap_or(&node.pos),
@@ -43,54 +43,59 @@ fn light_selection(node: &PluginNode) -> Result<LightSelection, LoadError> {
     }
 }
 
+/// Builds one integrator from its node.
+type BuildIntegrator = fn(&PluginNode) -> Result<Integrator, LoadError>;
+
+/// Every integrator plugin, by Mitsuba `type`.
+pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> = &[("path", path), ("direct", direct)];
+
 pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
-    let p = &node.props;
-    let integrator = match node.plugin_type.as_str() {
-        "path" => {
-            let max_depth = parse_max_depth(p.get_int("max_depth")?.unwrap_or(-1))
-                .map_err(at_property(node, &["max_depth"]))?;
-            let rr_depth = count(node, "rr_depth", 5)?;
-            if rr_depth == 0 {
-                let pos = p.position("rr_depth").unwrap_or(&node.pos);
-                return Err(LoadError::at(
-                    pos,
-                    format!("{}: 'rr_depth' must be at least 1", node.desc()),
-                ));
-            }
-            // steradian's own: the roulette's κ (integrator/path.rs)
-            let rr_scale = match p.get_float("rr_scale")? {
-                None => DEFAULT_RR_SCALE,
-                Some(v) => parse_rr_scale(v).map_err(at_property(node, &["rr_scale"]))?,
-            };
-            // steradian's own: paths continued from each first hit (integrator/path.rs); unset,
-            // a pilot chooses (integrator/branching.rs)
-            let branches = match p.get_int("branches")? {
-                None => Branches::Auto,
-                Some(v) => parse_branches(v).map_err(at_property(node, &["branches"]))?,
-            };
-            Integrator::Path(PathTracer {
-                max_depth,
-                rr_depth,
-                rr_scale,
-                emitters: visibility(p.get_bool("hide_emitters")?),
-                light_selection: light_selection(node)?,
-                branches,
-                ..PathTracer::default()
-            })
-        }
-        "direct" => {
-            let shading = count(node, "shading_samples", 1)?;
-            let emitter_samples = count(node, "emitter_samples", shading as i64)?;
-            let bsdf_samples = count(node, "bsdf_samples", shading as i64)?;
-            Integrator::Direct(DirectIntegrator {
-                emitter_samples,
-                bsdf_samples,
-                emitters: visibility(p.get_bool("hide_emitters")?),
-                light_selection: light_selection(node)?,
-            })
-        }
-        _ => return Err(unknown_type(node, KNOWN)),
-    };
+    let integrator = lookup(INTEGRATORS, node)?(node)?;
     node.check_all_used()?;
     Ok(integrator)
+}
+
+fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
+    let p = &node.props;
+    let max_depth = match p.get_int("max_depth")? {
+        None => DEFAULT_MAX_DEPTH,
+        Some(v) => parse_max_depth(v).map_err(at_param(node))?,
+    };
+    let rr_depth = count(node, "rr_depth", DEFAULT_RR_DEPTH as i64)?;
+    if rr_depth == 0 {
+        let pos = p.position("rr_depth").unwrap_or(&node.pos);
+        return Err(LoadError::at(pos, format!("{}: 'rr_depth' must be at least 1", node.desc())));
+    }
+    // steradian's own: the roulette's κ (integrator/path.rs)
+    let rr_scale = match p.get_float("rr_scale")? {
+        None => DEFAULT_RR_SCALE,
+        Some(v) => parse_rr_scale(v).map_err(at_param(node))?,
+    };
+    // steradian's own: paths continued from each first hit (integrator/path.rs); unset, a
+    // pilot chooses (integrator/branching.rs)
+    let branches = match p.get_int("branches")? {
+        None => Branches::default(),
+        Some(v) => parse_branches(v).map_err(at_param(node))?,
+    };
+    Ok(Integrator::Path(PathTracer {
+        max_depth,
+        rr_depth,
+        rr_scale,
+        emitters: visibility(p.get_bool("hide_emitters")?),
+        light_selection: light_selection(node)?,
+        branches,
+        ..PathTracer::default()
+    }))
+}
+
+fn direct(node: &PluginNode) -> Result<Integrator, LoadError> {
+    let shading = count(node, "shading_samples", DirectIntegrator::DEFAULT_SHADING_SAMPLES as i64)?;
+    let emitter_samples = count(node, "emitter_samples", shading as i64)?;
+    let bsdf_samples = count(node, "bsdf_samples", shading as i64)?;
+    Ok(Integrator::Direct(DirectIntegrator {
+        emitter_samples,
+        bsdf_samples,
+        emitters: visibility(node.props.get_bool("hide_emitters")?),
+        light_selection: light_selection(node)?,
+    }))
 }

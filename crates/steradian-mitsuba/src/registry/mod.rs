@@ -1,10 +1,12 @@
 //! The plugin registry: turns the parsed tree into the core renderer's [`Scene`].
 //!
-//! Each node is built by the function for its tag and `type` (one file per plugin family),
-//! which reads its properties through the typed accessors and takes its children; afterwards
-//! [`PluginNode::check_all_used`] makes anything the plugin did not read an error, as
-//! Mitsuba's "unreferenced property" is. An object referenced several times (`<ref>`) is built
-//! once and shared.
+//! Each node is built by the function for its tag and `type`: one file per plugin family, each
+//! with one table ([`Plugins`]) from `type` to builder, which both dispatch and the "unknown
+//! plugin type" error read (a unit test checks that README.md's table of supported plugins
+//! names every entry). A builder reads its properties through the typed accessors and takes
+//! its children; afterwards [`PluginNode::check_all_used`] makes anything the plugin did not
+//! read an error, as Mitsuba's "unreferenced property" is. An object referenced several times
+//! (`<ref>`) is built once and shared.
 
 mod bsdfs;
 mod emitters;
@@ -18,11 +20,12 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use steradian::bsdf::Bsdf;
+use steradian::param::ParamError;
 use steradian::render::Job;
 use steradian::scene::{Scene, SceneDescription};
 
 use crate::error::LoadError;
-use crate::xml::{ObjectTag, PluginNode, SceneNode};
+use crate::tree::{ObjectTag, PluginNode, SceneNode};
 
 /// State while a scene is assembled.
 pub(crate) struct Builder {
@@ -89,17 +92,30 @@ impl Builder {
     }
 }
 
-/// An error for a plugin `type` steradian does not know.
-pub(crate) fn unknown_type(node: &PluginNode, known: &[&str]) -> LoadError {
-    LoadError::at(
-        &node.pos,
-        format!(
-            "unknown {} plugin type '{}' (steradian knows: {})",
-            node.tag.name(),
-            node.plugin_type,
-            known.join(", ")
-        ),
-    )
+/// One plugin family: every `type` steradian knows, each with the function that builds it.
+/// Dispatch ([`lookup`]) and the list of known names in the "unknown plugin type" error both
+/// read the table, so the two cannot drift apart.
+pub(crate) type Plugins<F> = [(&'static str, F)];
+
+/// The builder for `node`'s `type`, or an error naming every `type` of the family.
+pub(crate) fn lookup<F: Copy>(plugins: &Plugins<F>, node: &PluginNode) -> Result<F, LoadError> {
+    match plugins.iter().find(|(name, _)| *name == node.plugin_type) {
+        Some((_, build)) => Ok(*build),
+        None => Err(LoadError::at(
+            &node.pos,
+            format!(
+                "unknown {} plugin type '{}' (steradian knows: {})",
+                node.tag.name(),
+                node.plugin_type,
+                names(plugins).join(", ")
+            ),
+        )),
+    }
+}
+
+/// The names of a family's plugins, in table order.
+pub(crate) fn names<F>(plugins: &Plugins<F>) -> Vec<&'static str> {
+    plugins.iter().map(|(name, _)| *name).collect()
 }
 
 /// Converts a core-library error message into a loader error at `node`.
@@ -107,20 +123,16 @@ pub(crate) fn at(node: &PluginNode) -> impl Fn(String) -> LoadError + '_ {
     move |msg| LoadError::at(&node.pos, format!("{}: {msg}", node.desc()))
 }
 
-/// Like [`at`], but placed at the property the message is about: the one of `names` that
-/// occurs first in the message and is given in `node` (core-library messages name the
-/// parameter, as in "fov must lie ..."); at `node` itself when none is.
-pub(crate) fn at_property<'a>(
-    node: &'a PluginNode,
-    names: &'a [&'a str],
-) -> impl Fn(String) -> LoadError + 'a {
-    move |msg| {
-        let pos = names
-            .iter()
-            .filter_map(|n| Some((msg.find(n)?, node.props.position(n)?)))
-            .min_by_key(|(i, _)| *i)
-            .map_or(&node.pos, |(_, p)| p);
-        LoadError::at(pos, format!("{}: {msg}", node.desc()))
+/// Converts a core-library parameter error into a loader error at the property it names:
+/// `param` where `node` gives it, else the related parameter where `node` gives that (the
+/// one the scene set when it left `param` at its default), else `node` itself.
+pub(crate) fn at_param(node: &PluginNode) -> impl Fn(ParamError) -> LoadError + '_ {
+    move |e| {
+        let pos = std::iter::once(e.param)
+            .chain(e.related)
+            .find_map(|n| node.props.position(n))
+            .unwrap_or(&node.pos);
+        LoadError::at(pos, format!("{}: {e}", node.desc()))
     }
 }
 
@@ -195,4 +207,40 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
     b.desc.light_selection = integrator.light_selection();
     let scene = Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))?;
     Ok(Job { scene, integrator })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The README's table of supported plugins names every plugin of every family's table.
+    #[test]
+    fn readme_lists_every_plugin() {
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md");
+        let readme = std::fs::read_to_string(path).unwrap();
+        let families = [
+            ("shapes", names(shapes::SHAPES)),
+            ("BSDFs", names(bsdfs::BSDFS)),
+            ("textures", names(textures::TEXTURES)),
+            ("emitters", [names(emitters::EMITTERS), vec!["area"]].concat()),
+            (
+                "sensors",
+                [names(sensors::SENSORS), names(sensors::FILMS), names(sensors::FILTERS)].concat(),
+            ),
+            ("samplers", names(sensors::SAMPLERS)),
+            ("integrators", names(integrators::INTEGRATORS)),
+        ];
+        for (family, plugins) in families {
+            let row = readme
+                .lines()
+                .find(|l| l.starts_with(&format!("| {family} ")))
+                .unwrap_or_else(|| panic!("README.md has no row for {family}"));
+            for name in plugins {
+                assert!(
+                    row.contains(&format!("`{name}`")),
+                    "README.md's {family} row lacks {name}"
+                );
+            }
+        }
+    }
 }

@@ -5,16 +5,15 @@
 use steradian::film::{
     BoxFilter, ComponentFormat, Film, GaussianFilter, ReconstructionFilter, TentFilter,
 };
+use steradian::geometry::Transform;
 use steradian::sampling::{Sampler, SamplerKind};
 use steradian::sensor::{
     FieldOfView, FovAxis, IrradianceMeter, Perspective, RadianceMeter, Sensor, SensorKind, ThinLens,
 };
 
-use super::{at, at_property, unknown_type};
+use super::{at, at_param, lookup, Plugins};
 use crate::error::LoadError;
-use crate::xml::{ObjectTag, PluginNode};
-
-const KNOWN: &[&str] = &["perspective", "thinlens", "radiancemeter", "irradiancemeter"];
+use crate::tree::{ObjectTag, PluginNode};
 
 fn single_child(node: &PluginNode, tag: ObjectTag) -> Result<Option<&PluginNode>, LoadError> {
     let c = node.children_of(tag);
@@ -38,32 +37,49 @@ fn positive_int(node: &PluginNode, name: &str, default: i64) -> Result<u32, Load
     Ok(v as u32)
 }
 
+/// Builds one reconstruction filter from its node.
+type BuildFilter = fn(&PluginNode) -> Result<ReconstructionFilter, LoadError>;
+
+/// Every reconstruction filter plugin, by Mitsuba `type`.
+pub(super) const FILTERS: &Plugins<BuildFilter> =
+    &[("box", box_filter), ("tent", tent_filter), ("gaussian", gaussian_filter)];
+
 fn build_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
-    let f: ReconstructionFilter = match node.plugin_type.as_str() {
-        "box" => BoxFilter::new().into(),
-        "tent" => {
-            TentFilter::new(node.props.get_float("radius")?.unwrap_or(TentFilter::DEFAULT_RADIUS))
-                .map_err(at(node))?
-                .into()
-        }
-        "gaussian" => GaussianFilter::new(
-            node.props.get_float("stddev")?.unwrap_or(GaussianFilter::DEFAULT_STDDEV),
-        )
-        .map_err(at(node))?
-        .into(),
-        _ => return Err(unknown_type(node, &["box", "tent", "gaussian"])),
-    };
+    let f = lookup(FILTERS, node)?(node)?;
     node.check_all_used()?;
     Ok(f)
 }
 
+fn box_filter(_: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
+    Ok(BoxFilter::new().into())
+}
+
+fn tent_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
+    let radius = node.props.get_float("radius")?.unwrap_or(TentFilter::DEFAULT_RADIUS);
+    Ok(TentFilter::new(radius).map_err(at(node))?.into())
+}
+
+fn gaussian_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
+    let stddev = node.props.get_float("stddev")?.unwrap_or(GaussianFilter::DEFAULT_STDDEV);
+    Ok(GaussianFilter::new(stddev).map_err(at(node))?.into())
+}
+
+/// Builds one film from its node.
+type BuildFilm = fn(&PluginNode) -> Result<Film, LoadError>;
+
+/// Every film plugin, by Mitsuba `type`.
+pub(super) const FILMS: &Plugins<BuildFilm> = &[("hdrfilm", hdrfilm)];
+
 fn build_film(node: &PluginNode) -> Result<Film, LoadError> {
-    if node.plugin_type != "hdrfilm" {
-        return Err(unknown_type(node, &["hdrfilm"]));
-    }
+    let film = lookup(FILMS, node)?(node)?;
+    node.check_all_used()?;
+    Ok(film)
+}
+
+fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
     let p = &node.props;
-    let width = positive_int(node, "width", 768)?;
-    let height = positive_int(node, "height", 576)?;
+    let width = positive_int(node, "width", Film::DEFAULT_WIDTH as i64)?;
+    let height = positive_int(node, "height", Film::DEFAULT_HEIGHT as i64)?;
     let filter = match single_child(node, ObjectTag::RFilter)? {
         Some(f) => build_filter(f)?,
         None => ReconstructionFilter::default(),
@@ -88,7 +104,7 @@ fn build_film(node: &PluginNode) -> Result<Film, LoadError> {
         Some(f) => ComponentFormat::parse(&f).map_err(|m| {
             LoadError::at(p.position("component_format").unwrap(), format!("hdrfilm: {m}"))
         })?,
-        None => ComponentFormat::Float16,
+        None => ComponentFormat::default(),
     };
     if p.get_bool("sample_border")? == Some(true) {
         return Err(LoadError::at(
@@ -104,52 +120,28 @@ fn build_film(node: &PluginNode) -> Result<Film, LoadError> {
         )
     })?;
     film.component_format = component_format;
-    node.check_all_used()?;
     Ok(film)
 }
 
-/// Every Mitsuba sampler type promises the same expectation and differs only in noise;
-/// steradian draws Owen-scrambled Sobol points for all of them (unbiased, and lower error
-/// than any of them). `--sampler independent` restores i.i.d. numbers.
+/// Reads one sampler's own parameters (not `sample_count` and `seed`) from its node.
+type BuildSampler = fn(&PluginNode) -> Result<SamplerKind, LoadError>;
+
+/// Every sampler plugin, by Mitsuba `type`. Every Mitsuba sampler type promises the same
+/// expectation and differs only in noise; steradian draws Owen-scrambled Sobol points for all
+/// of them (unbiased, and lower error than any of them). `--sampler independent` restores
+/// i.i.d. numbers.
+pub(super) const SAMPLERS: &Plugins<BuildSampler> = &[
+    ("independent", sobol),
+    ("stratified", jittered),
+    ("multijitter", jittered),
+    ("orthogonal", orthogonal),
+    ("ldsampler", sobol),
+];
+
 fn build_sampler(node: &PluginNode) -> Result<Sampler, LoadError> {
-    let kind = match node.plugin_type.as_str() {
-        "independent" => SamplerKind::Sobol,
-        "stratified" | "multijitter" => {
-            if node.props.get_bool("jitter")? == Some(false) {
-                return Err(LoadError::at(
-                    node.props.position("jitter").unwrap(),
-                    format!("{}: jitter = false (biased) is not supported", node.desc()),
-                ));
-            }
-            SamplerKind::Sobol
-        }
-        "orthogonal" => {
-            if let Some(s) = node.props.get_int("strength")? {
-                if s != 2 {
-                    return Err(LoadError::at(
-                        node.props.position("strength").unwrap(),
-                        "orthogonal: only strength 2 is supported",
-                    ));
-                }
-            }
-            if node.props.get_bool("jitter")? == Some(false) {
-                return Err(LoadError::at(
-                    node.props.position("jitter").unwrap(),
-                    "orthogonal: jitter = false (biased) is not supported",
-                ));
-            }
-            SamplerKind::Sobol
-        }
-        "ldsampler" => SamplerKind::Sobol,
-        _ => {
-            return Err(unknown_type(
-                node,
-                &["independent", "stratified", "multijitter", "orthogonal", "ldsampler"],
-            ))
-        }
-    };
-    let sample_count = positive_int(node, "sample_count", 4)?;
-    let seed = node.props.get_int("seed")?.unwrap_or(0);
+    let kind = lookup(SAMPLERS, node)?(node)?;
+    let sample_count = positive_int(node, "sample_count", Sampler::DEFAULT_SAMPLE_COUNT as i64)?;
+    let seed = node.props.get_int("seed")?.unwrap_or(Sampler::DEFAULT_SEED as i64);
     if seed < 0 {
         return Err(LoadError::at(
             node.props.position("seed").unwrap(),
@@ -158,6 +150,40 @@ fn build_sampler(node: &PluginNode) -> Result<Sampler, LoadError> {
     }
     node.check_all_used()?;
     Ok(Sampler { kind, sample_count, seed: seed as u64 })
+}
+
+/// `independent` and `ldsampler`: no parameters of their own.
+fn sobol(_: &PluginNode) -> Result<SamplerKind, LoadError> {
+    Ok(SamplerKind::Sobol)
+}
+
+/// `stratified` and `multijitter`: `jitter` must stay on (off is biased).
+fn jittered(node: &PluginNode) -> Result<SamplerKind, LoadError> {
+    if node.props.get_bool("jitter")? == Some(false) {
+        return Err(LoadError::at(
+            node.props.position("jitter").unwrap(),
+            format!("{}: jitter = false (biased) is not supported", node.desc()),
+        ));
+    }
+    Ok(SamplerKind::Sobol)
+}
+
+fn orthogonal(node: &PluginNode) -> Result<SamplerKind, LoadError> {
+    if let Some(s) = node.props.get_int("strength")? {
+        if s != 2 {
+            return Err(LoadError::at(
+                node.props.position("strength").unwrap(),
+                "orthogonal: only strength 2 is supported",
+            ));
+        }
+    }
+    if node.props.get_bool("jitter")? == Some(false) {
+        return Err(LoadError::at(
+            node.props.position("jitter").unwrap(),
+            "orthogonal: jitter = false (biased) is not supported",
+        ));
+    }
+    Ok(SamplerKind::Sobol)
 }
 
 fn parse_focal_length(node: &PluginNode, s: &str) -> Result<f32, LoadError> {
@@ -170,88 +196,123 @@ fn parse_focal_length(node: &PluginNode, s: &str) -> Result<f32, LoadError> {
     })
 }
 
+/// Builds one sensor's kind from its node, given its film and, for a sensor declared inside
+/// a shape, that shape's index.
+type BuildSensor = fn(&PluginNode, &Film, Option<u32>) -> Result<SensorKind, LoadError>;
+
+/// Every sensor plugin, by Mitsuba `type`.
+pub(super) const SENSORS: &Plugins<BuildSensor> = &[
+    ("perspective", perspective),
+    ("thinlens", thinlens),
+    ("radiancemeter", radiancemeter),
+    ("irradiancemeter", irradiancemeter),
+];
+
 /// Builds a sensor; `shape` is the enclosing shape for an `irradiancemeter`.
 pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, LoadError> {
-    if !KNOWN.contains(&node.plugin_type.as_str()) {
-        return Err(unknown_type(node, KNOWN));
-    }
-    let p = &node.props;
+    let build_kind = lookup(SENSORS, node)?;
     let film = match single_child(node, ObjectTag::Film)? {
         Some(f) => build_film(f)?,
-        None => Film::new(768, 576, ReconstructionFilter::default()).map_err(at(node))?,
+        None => {
+            Film::new(Film::DEFAULT_WIDTH, Film::DEFAULT_HEIGHT, ReconstructionFilter::default())
+                .map_err(at(node))?
+        }
     };
     let sampler = match single_child(node, ObjectTag::Sampler)? {
         Some(s) => build_sampler(s)?,
         None => Sampler::default(),
     };
-    let id = node.id.clone().unwrap_or_default();
-    let meter_film = |film: &Film| -> Result<(), LoadError> {
-        if (film.width, film.height) != (1, 1) {
-            return Err(LoadError::at(
-                &node.pos,
-                format!(
-                    "{}: a meter needs a 1x1 film, got {}x{}",
-                    node.desc(),
-                    film.width,
-                    film.height
-                ),
-            ));
-        }
-        Ok(())
+    let kind = build_kind(node, &film, shape)?;
+    node.check_all_used()?;
+    Ok(Sensor { kind, film, sampler, id: node.id.clone().unwrap_or_default() })
+}
+
+/// Only an `irradiancemeter` may be declared inside a shape.
+fn not_in_shape(node: &PluginNode, shape: Option<u32>) -> Result<(), LoadError> {
+    match shape {
+        None => Ok(()),
+        Some(_) => Err(LoadError::at(
+            &node.pos,
+            format!("only an irradiancemeter can be declared inside a shape, not {}", node.desc()),
+        )),
+    }
+}
+
+/// A meter measures one value: its film must be 1x1.
+fn meter_film(node: &PluginNode, film: &Film) -> Result<(), LoadError> {
+    if (film.width, film.height) != (1, 1) {
+        return Err(LoadError::at(
+            &node.pos,
+            format!(
+                "{}: a meter needs a 1x1 film, got {}x{}",
+                node.desc(),
+                film.width,
+                film.height
+            ),
+        ));
+    }
+    Ok(())
+}
+
+fn irradiancemeter(
+    node: &PluginNode,
+    film: &Film,
+    shape: Option<u32>,
+) -> Result<SensorKind, LoadError> {
+    let Some(shape) = shape else {
+        return Err(LoadError::at(
+            &node.pos,
+            "an irradiancemeter must be declared inside the <shape> it measures",
+        ));
     };
-    match (node.plugin_type.as_str(), shape) {
-        ("irradiancemeter", None) => {
-            return Err(LoadError::at(
-                &node.pos,
-                "an irradiancemeter must be declared inside the <shape> it measures",
-            ));
-        }
-        ("irradiancemeter", Some(shape)) => {
-            meter_film(&film)?;
-            node.check_all_used()?;
-            return Ok(Sensor {
-                kind: SensorKind::IrradianceMeter(IrradianceMeter { shape }),
-                film,
-                sampler,
-                id,
-            });
-        }
-        (_, Some(_)) => {
-            return Err(LoadError::at(
-                &node.pos,
-                format!(
-                    "only an irradiancemeter can be declared inside a shape, not {}",
-                    node.desc()
-                ),
-            ));
-        }
-        ("radiancemeter", None) => {
-            meter_film(&film)?;
-            let meter = match (
-                p.get_transform("to_world")?,
-                p.get_point("origin")?,
-                p.get_vector("direction")?,
-            ) {
-                (Some(t), None, None) => RadianceMeter::from_transform(&t),
-                (None, Some(o), Some(d)) => RadianceMeter::new(o, d),
-                (None, None, None) => RadianceMeter::from_transform(&Default::default()),
-                (Some(_), _, _) => return Err(LoadError::at(
+    meter_film(node, film)?;
+    Ok(SensorKind::IrradianceMeter(IrradianceMeter { shape }))
+}
+
+fn radiancemeter(
+    node: &PluginNode,
+    film: &Film,
+    shape: Option<u32>,
+) -> Result<SensorKind, LoadError> {
+    not_in_shape(node, shape)?;
+    meter_film(node, film)?;
+    let p = &node.props;
+    let meter =
+        match (p.get_transform("to_world")?, p.get_point("origin")?, p.get_vector("direction")?) {
+            (Some(t), None, None) => RadianceMeter::from_transform(&t),
+            (None, Some(o), Some(d)) => RadianceMeter::new(o, d),
+            (None, None, None) => RadianceMeter::from_transform(&Default::default()),
+            (Some(_), _, _) => {
+                return Err(LoadError::at(
                     &node.pos,
                     "radiancemeter: give either 'to_world' or 'origin' and 'direction', not both",
-                )),
-                _ => {
-                    return Err(LoadError::at(
-                        &node.pos,
-                        "radiancemeter: 'origin' and 'direction' go together",
-                    ))
-                }
+                ))
             }
-            .map_err(at(node))?;
-            node.check_all_used()?;
-            return Ok(Sensor { kind: SensorKind::RadianceMeter(meter), film, sampler, id });
+            _ => {
+                return Err(LoadError::at(
+                    &node.pos,
+                    "radiancemeter: 'origin' and 'direction' go together",
+                ))
+            }
         }
-        _ => {}
-    }
+        .map_err(at(node))?;
+    Ok(SensorKind::RadianceMeter(meter))
+}
+
+/// The parameters `perspective` and `thinlens` share.
+struct Projective {
+    to_world: Transform,
+    /// Radians.
+    x_fov: f32,
+    /// Film width / height.
+    aspect: f32,
+    near_clip: f32,
+    far_clip: f32,
+    focus_distance: f32,
+}
+
+fn projective(node: &PluginNode, film: &Film) -> Result<Projective, LoadError> {
+    let p = &node.props;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let fov = match (p.get_float("fov")?, p.get_string("focal_length")?) {
         (Some(_), Some(_)) => {
@@ -268,7 +329,7 @@ pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, Loa
                         format!("fov_axis must be x, y, diagonal, smaller or larger, got '{a}'"),
                     )
                 })?,
-                None => FovAxis::X,
+                None => FovAxis::default(),
             };
             FieldOfView::Angle { degrees, axis }
         }
@@ -283,36 +344,46 @@ pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, Loa
             FieldOfView::FocalLength {
                 mm: match fl {
                     Some(s) => parse_focal_length(node, &s)?,
-                    None => 50.0,
+                    None => FieldOfView::DEFAULT_FOCAL_LENGTH,
                 },
             }
         }
     };
-    let x_fov =
-        fov.x_fov(film.width, film.height).map_err(at_property(node, &["fov", "focal_length"]))?;
+    let x_fov = fov.x_fov(film.width, film.height).map_err(at_param(node))?;
     let aspect = film.width as f32 / film.height as f32;
-    let near = p.get_float("near_clip")?.unwrap_or(0.01);
-    let far = p.get_float("far_clip")?.unwrap_or(1e4);
-    let focus = p.get_float("focus_distance")?.unwrap_or(far);
-    let lens_err = at_property(
-        node,
-        &["to_world", "near_clip", "far_clip", "aperture_radius", "focus_distance"],
-    );
-    let kind = match node.plugin_type.as_str() {
-        "perspective" => SensorKind::Perspective(
-            Perspective::new(to_world, x_fov, aspect, near, far).map_err(lens_err)?,
-        ),
-        "thinlens" => {
-            let aperture = p.get_float("aperture_radius")?.ok_or_else(|| {
-                LoadError::at(&node.pos, format!("{}: missing 'aperture_radius'", node.desc()))
-            })?;
-            SensorKind::ThinLens(
-                ThinLens::new(to_world, x_fov, aspect, near, far, aperture, focus)
-                    .map_err(lens_err)?,
-            )
-        }
-        _ => unreachable!("checked above"),
-    };
-    node.check_all_used()?;
-    Ok(Sensor { kind, film, sampler, id })
+    let near_clip = p.get_float("near_clip")?.unwrap_or(Perspective::DEFAULT_NEAR_CLIP);
+    let far_clip = p.get_float("far_clip")?.unwrap_or(Perspective::DEFAULT_FAR_CLIP);
+    let focus_distance = p.get_float("focus_distance")?.unwrap_or(far_clip);
+    Ok(Projective { to_world, x_fov, aspect, near_clip, far_clip, focus_distance })
+}
+
+fn perspective(
+    node: &PluginNode,
+    film: &Film,
+    shape: Option<u32>,
+) -> Result<SensorKind, LoadError> {
+    not_in_shape(node, shape)?;
+    let c = projective(node, film)?;
+    let camera = Perspective::new(c.to_world, c.x_fov, c.aspect, c.near_clip, c.far_clip)
+        .map_err(at_param(node))?;
+    Ok(SensorKind::Perspective(camera))
+}
+
+fn thinlens(node: &PluginNode, film: &Film, shape: Option<u32>) -> Result<SensorKind, LoadError> {
+    not_in_shape(node, shape)?;
+    let c = projective(node, film)?;
+    let aperture = node.props.get_float("aperture_radius")?.ok_or_else(|| {
+        LoadError::at(&node.pos, format!("{}: missing 'aperture_radius'", node.desc()))
+    })?;
+    let camera = ThinLens::new(
+        c.to_world,
+        c.x_fov,
+        c.aspect,
+        c.near_clip,
+        c.far_clip,
+        aperture,
+        c.focus_distance,
+    )
+    .map_err(at_param(node))?;
+    Ok(SensorKind::ThinLens(camera))
 }

@@ -1,79 +1,139 @@
 //! Shape plugins: `obj`, `ply`, `rectangle`, `disk`, `cube`, `sphere`, `cylinder`, with
 //! their BSDF and area emitter.
 
+use std::path::PathBuf;
 use std::sync::Arc;
 
+use steradian::geometry::Transform;
 use steradian::scene::ShapeBinding;
-use steradian::shape::{cube, read_obj, read_ply, Cylinder, Disk, Mesh, Rectangle, Shape, Sphere};
-use steradian::Vec3;
+use steradian::shape::{
+    self, read_obj, read_ply, Cylinder, Disk, Mesh, MeshData, Rectangle, Shape, ShapeError, Sphere,
+    DEFAULT_FLIP_TEX_COORDS,
+};
 
-use super::{emitters, unknown_type, Builder};
+use super::{emitters, lookup, Builder, Plugins};
 use crate::error::LoadError;
-use crate::xml::{ObjectTag, PluginNode};
+use crate::tree::{ObjectTag, PluginNode};
 
-const KNOWN: &[&str] = &["obj", "ply", "rectangle", "disk", "cube", "sphere", "cylinder"];
+/// What a shape builder reads: the scene being built (for file paths), the shape's node, and
+/// the `to_world` and `flip_normals` every shape has.
+pub(super) struct ShapeArgs<'a> {
+    b: &'a Builder,
+    node: &'a PluginNode,
+    to_world: Transform,
+    flip: bool,
+}
+
+/// Builds one shape from its node.
+type BuildShape = fn(&ShapeArgs) -> Result<Shape, LoadError>;
+
+/// Every shape plugin, by Mitsuba `type`.
+pub(super) const SHAPES: &Plugins<BuildShape> = &[
+    ("obj", obj),
+    ("ply", ply),
+    ("rectangle", rectangle),
+    ("disk", disk),
+    ("cube", cube),
+    ("sphere", sphere),
+    ("cylinder", cylinder),
+];
+
+/// A shape error at the node.
+fn shape_err(node: &PluginNode) -> impl Fn(ShapeError) -> LoadError + '_ {
+    move |e| LoadError::at(&node.pos, format!("{}: {e}", node.desc()))
+}
+
+/// An error reading a mesh file, placed at its `filename`.
+fn mesh_err(node: &PluginNode) -> impl Fn(ShapeError) -> LoadError + '_ {
+    move |e| {
+        LoadError::at(
+            node.props.position("filename").unwrap_or(&node.pos),
+            format!("{}: {e}", node.desc()),
+        )
+    }
+}
+
+/// The mesh file named by the required string property `filename`.
+fn mesh_file(s: &ShapeArgs) -> Result<PathBuf, LoadError> {
+    let node = s.node;
+    let file = node
+        .props
+        .get_string("filename")?
+        .ok_or_else(|| LoadError::at(&node.pos, format!("{}: missing 'filename'", node.desc())))?;
+    Ok(s.b.resolve_path(node, &file))
+}
+
+/// `face_normals` of `obj` and `ply`.
+fn face_normals(node: &PluginNode) -> Result<bool, LoadError> {
+    Ok(node.props.get_bool("face_normals")?.unwrap_or(Mesh::DEFAULT_FACE_NORMALS))
+}
+
+/// The mesh of a file's `data` (or the error reading it), errors placed at `filename`.
+fn mesh(
+    s: &ShapeArgs,
+    data: Result<MeshData, ShapeError>,
+    face_normals: bool,
+) -> Result<Shape, LoadError> {
+    let data = data.map_err(mesh_err(s.node))?;
+    let mesh =
+        Mesh::from_data(data, &s.to_world, s.flip, face_normals).map_err(mesh_err(s.node))?;
+    Ok(Shape::Mesh(mesh))
+}
+
+fn obj(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let path = mesh_file(s)?;
+    let face_normals = face_normals(s.node)?;
+    let flip_tex = s.node.props.get_bool("flip_tex_coords")?.unwrap_or(DEFAULT_FLIP_TEX_COORDS);
+    mesh(s, read_obj(&path, flip_tex), face_normals)
+}
+
+fn ply(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let path = mesh_file(s)?;
+    let face_normals = face_normals(s.node)?;
+    mesh(s, read_ply(&path), face_normals)
+}
+
+fn rectangle(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Rectangle(Rectangle::new(&s.to_world, s.flip)))
+}
+
+fn disk(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Disk(Disk::new(&s.to_world, s.flip)))
+}
+
+fn cube(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Mesh(shape::cube(&s.to_world, s.flip)))
+}
+
+fn sphere(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let (p, node) = (&s.node.props, s.node);
+    let center = p.get_point("center")?.unwrap_or(Sphere::DEFAULT_CENTER);
+    let radius = p.get_float("radius")?.unwrap_or(Sphere::DEFAULT_RADIUS);
+    if !(radius.is_finite() && radius != 0.0) {
+        return Err(LoadError::at(
+            p.position("radius").unwrap_or(&node.pos),
+            format!("{}: radius must be non-zero and finite, got {radius}", node.desc()),
+        ));
+    }
+    Ok(Shape::Sphere(Sphere::new(center, radius, &s.to_world, s.flip)))
+}
+
+fn cylinder(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let p = &s.node.props;
+    let p0 = p.get_point("p0")?.unwrap_or(Cylinder::DEFAULT_P0);
+    let p1 = p.get_point("p1")?.unwrap_or(Cylinder::DEFAULT_P1);
+    let radius = p.get_float("radius")?.unwrap_or(Cylinder::DEFAULT_RADIUS);
+    let cylinder = Cylinder::new(p0, p1, radius, &s.to_world, s.flip).map_err(shape_err(s.node))?;
+    Ok(Shape::Cylinder(cylinder))
+}
 
 /// Builds a shape node and adds it (with its BSDF and area light) to the scene.
 pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadError> {
     let p = &node.props;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
-    let flip_normals = p.get_bool("flip_normals")?.unwrap_or(false);
-    let shape_err =
-        |e: steradian::shape::ShapeError| LoadError::at(&node.pos, format!("{}: {e}", node.desc()));
-    // Errors reading a mesh file are placed at its `filename`.
-    let mesh_err = |e: steradian::shape::ShapeError| {
-        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {e}", node.desc()))
-    };
-
-    let mesh_file = |name: &str| -> Result<std::path::PathBuf, LoadError> {
-        let file = p.get_string(name)?.ok_or_else(|| {
-            LoadError::at(&node.pos, format!("{}: missing '{name}'", node.desc()))
-        })?;
-        Ok(b.resolve_path(node, &file))
-    };
-
-    let shape = match node.plugin_type.as_str() {
-        "obj" => {
-            let path = mesh_file("filename")?;
-            let face_normals = p.get_bool("face_normals")?.unwrap_or(false);
-            let flip_tex = p.get_bool("flip_tex_coords")?.unwrap_or(true);
-            let data = read_obj(&path, flip_tex).map_err(mesh_err)?;
-            Shape::Mesh(
-                Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(mesh_err)?,
-            )
-        }
-        "ply" => {
-            let path = mesh_file("filename")?;
-            let face_normals = p.get_bool("face_normals")?.unwrap_or(false);
-            let data = read_ply(&path).map_err(mesh_err)?;
-            Shape::Mesh(
-                Mesh::from_data(data, &to_world, flip_normals, face_normals).map_err(mesh_err)?,
-            )
-        }
-        "rectangle" => Shape::Rectangle(Rectangle::new(&to_world, flip_normals)),
-        "disk" => Shape::Disk(Disk::new(&to_world, flip_normals)),
-        "cube" => Shape::Mesh(cube(&to_world, flip_normals)),
-        "sphere" => {
-            let center = p.get_point("center")?.unwrap_or(Vec3::ZERO);
-            let radius = p.get_float("radius")?.unwrap_or(1.0);
-            if !(radius.is_finite() && radius != 0.0) {
-                return Err(LoadError::at(
-                    p.position("radius").unwrap_or(&node.pos),
-                    format!("{}: radius must be non-zero and finite, got {radius}", node.desc()),
-                ));
-            }
-            Shape::Sphere(Sphere::new(center, radius, &to_world, flip_normals))
-        }
-        "cylinder" => {
-            let p0 = p.get_point("p0")?.unwrap_or(Vec3::ZERO);
-            let p1 = p.get_point("p1")?.unwrap_or(Vec3::Z);
-            let radius = p.get_float("radius")?.unwrap_or(1.0);
-            Shape::Cylinder(
-                Cylinder::new(p0, p1, radius, &to_world, flip_normals).map_err(shape_err)?,
-            )
-        }
-        _ => return Err(unknown_type(node, KNOWN)),
-    };
+    let flip_normals = p.get_bool("flip_normals")?.unwrap_or(shape::DEFAULT_FLIP_NORMALS);
+    let build_shape = lookup(SHAPES, node)?;
+    let shape = build_shape(&ShapeArgs { b, node, to_world, flip: flip_normals })?;
     if !shape.surface_area().is_finite() {
         return Err(LoadError::at(
             &node.pos,

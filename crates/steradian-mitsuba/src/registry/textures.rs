@@ -7,11 +7,9 @@ use steradian::texture::{
 };
 use steradian::Spectrum;
 
-use super::{unknown_type, Builder};
+use super::{lookup, Builder, Plugins};
 use crate::error::LoadError;
-use crate::xml::{ObjectTag, PluginNode};
-
-const KNOWN: &[&str] = &["bitmap", "checkerboard"];
+use crate::tree::{ObjectTag, PluginNode};
 
 /// A parameter given as a value (`<rgb>`, `<spectrum>`, `<float>`) or as a nested
 /// `<texture name="...">` (or a `<ref>` to one); `default` (uniform) when absent, or an error
@@ -77,57 +75,58 @@ fn choice<T: Copy>(
     }
 }
 
+/// Builds one texture from its node.
+type BuildTexture = fn(&Builder, &PluginNode) -> Result<Texture, LoadError>;
+
+/// Every texture plugin, by Mitsuba `type`.
+pub(super) const TEXTURES: &Plugins<BuildTexture> =
+    &[("bitmap", bitmap), ("checkerboard", checkerboard)];
+
 /// Builds a `<texture>` node.
 pub(crate) fn build(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
-    let p = &node.props;
-    let texture = match node.plugin_type.as_str() {
-        "bitmap" => {
-            let Some(filename) = p.get_string("filename")? else {
-                return Err(LoadError::at(
-                    &node.pos,
-                    format!("{}: missing parameter 'filename'", node.desc()),
-                ));
-            };
-            let filter = choice(
-                node,
-                "filter_type",
-                FilterType::Bilinear,
-                &[("bilinear", FilterType::Bilinear), ("nearest", FilterType::Nearest)],
-            )?;
-            let wrap = choice(
-                node,
-                "wrap_mode",
-                WrapMode::Repeat,
-                &[
-                    ("repeat", WrapMode::Repeat),
-                    ("mirror", WrapMode::Mirror),
-                    ("clamp", WrapMode::Clamp),
-                ],
-            )?;
-            let raw = p.get_bool("raw")?.unwrap_or(false);
-            // storage precision and CUDA texture hardware: no effect on steradian's results
-            choice(node, "format", (), &[("auto", ()), ("variant", ()), ("fp16", ())])?;
-            p.get_bool("accel")?;
-            let to_uv = to_uv(node)?;
-            let path = b.resolve_path(node, &filename);
-            let at_file = |msg: String| {
-                LoadError::at(
-                    p.position("filename").unwrap_or(&node.pos),
-                    format!("{}: {msg}", node.desc()),
-                )
-            };
-            let image = read_image(&path).map_err(at_file)?;
-            Texture::Bitmap(
-                Bitmap::new(&filename, image, raw, filter, wrap, to_uv).map_err(at_file)?,
-            )
-        }
-        "checkerboard" => {
-            let color0 = texture_param(b, node, "color0", Some(0.4))?;
-            let color1 = texture_param(b, node, "color1", Some(0.2))?;
-            Texture::Checkerboard(Checkerboard::new(color0, color1, to_uv(node)?))
-        }
-        _ => return Err(unknown_type(node, KNOWN)),
-    };
+    let texture = lookup(TEXTURES, node)?(b, node)?;
     node.check_all_used()?;
     Ok(texture)
+}
+
+fn bitmap(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
+    let p = &node.props;
+    let Some(filename) = p.get_string("filename")? else {
+        return Err(LoadError::at(
+            &node.pos,
+            format!("{}: missing parameter 'filename'", node.desc()),
+        ));
+    };
+    let filter = choice(
+        node,
+        "filter_type",
+        FilterType::default(),
+        &[("bilinear", FilterType::Bilinear), ("nearest", FilterType::Nearest)],
+    )?;
+    let wrap = choice(
+        node,
+        "wrap_mode",
+        WrapMode::default(),
+        &[("repeat", WrapMode::Repeat), ("mirror", WrapMode::Mirror), ("clamp", WrapMode::Clamp)],
+    )?;
+    let raw = p.get_bool("raw")?.unwrap_or(Bitmap::DEFAULT_RAW);
+    // storage precision and CUDA texture hardware: no effect on steradian's results
+    choice(node, "format", (), &[("auto", ()), ("variant", ()), ("fp16", ())])?;
+    p.get_bool("accel")?;
+    let to_uv = to_uv(node)?;
+    let path = b.resolve_path(node, &filename);
+    let at_file = |msg: String| {
+        LoadError::at(
+            p.position("filename").unwrap_or(&node.pos),
+            format!("{}: {msg}", node.desc()),
+        )
+    };
+    let image = read_image(&path).map_err(at_file)?;
+    Ok(Texture::Bitmap(Bitmap::new(&filename, image, raw, filter, wrap, to_uv).map_err(at_file)?))
+}
+
+fn checkerboard(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
+    let color0 = texture_param(b, node, "color0", Some(Checkerboard::DEFAULT_COLOR0))?;
+    let color1 = texture_param(b, node, "color1", Some(Checkerboard::DEFAULT_COLOR1))?;
+    Ok(Texture::Checkerboard(Checkerboard::new(color0, color1, to_uv(node)?)))
 }

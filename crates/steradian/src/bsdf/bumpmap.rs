@@ -32,6 +32,9 @@ pub struct BumpMap {
 }
 
 impl BumpMap {
+    /// Default `scale` of the height gradient (Mitsuba's).
+    pub const DEFAULT_SCALE: f32 = 1.0;
+
     /// `height` must have a gradient ([`Texture::has_gradient`]).
     pub fn new(
         height: Texture,

@@ -26,6 +26,16 @@ pub struct Conductor {
 }
 
 impl Conductor {
+    /// Default `material` (Mitsuba's): `none`, a perfect mirror; `roughconductor` shares the
+    /// conductor defaults.
+    pub const DEFAULT_MATERIAL: &'static str = "none";
+    /// Default `eta` where `eta`/`k` are given instead of a material (dimensionless).
+    pub const DEFAULT_ETA: f32 = 0.0;
+    /// Default `k` where `eta`/`k` are given instead of a material (dimensionless).
+    pub const DEFAULT_K: f32 = 1.0;
+    /// Default `specular_reflectance` (dimensionless factor).
+    pub const DEFAULT_SPECULAR_REFLECTANCE: f32 = 1.0;
+
     pub fn new(eta: Spectrum, k: Spectrum, specular_reflectance: Texture) -> Self {
         Conductor { ior: ConductorIor::new(eta, k), specular_reflectance }
     }

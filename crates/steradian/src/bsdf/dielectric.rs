@@ -32,6 +32,16 @@ pub struct Dielectric {
 }
 
 impl Dielectric {
+    /// Default `int_ior` (Mitsuba's): BK7 glass, 1.5046; `thindielectric` and
+    /// `roughdielectric` share the dielectric defaults.
+    pub const DEFAULT_INT_IOR: &'static str = "bk7";
+    /// Default `ext_ior` (Mitsuba's): air, 1.000277.
+    pub const DEFAULT_EXT_IOR: &'static str = "air";
+    /// Default `specular_reflectance` (dimensionless factor).
+    pub const DEFAULT_SPECULAR_REFLECTANCE: f32 = 1.0;
+    /// Default `specular_transmittance` (dimensionless factor).
+    pub const DEFAULT_SPECULAR_TRANSMITTANCE: f32 = 1.0;
+
     pub fn new(eta: f32, specular_reflectance: Texture, specular_transmittance: Texture) -> Self {
         Dielectric { eta, specular_reflectance, specular_transmittance }
     }

@@ -24,6 +24,9 @@ pub struct Diffuse {
 }
 
 impl Diffuse {
+    /// Default `reflectance` (Mitsuba's): 0.5, also the BSDF of a shape that has none.
+    pub const DEFAULT_REFLECTANCE: f32 = 0.5;
+
     pub fn new(reflectance: Texture) -> Self {
         Diffuse { reflectance }
     }

@@ -31,6 +31,9 @@ pub struct Mask {
 }
 
 impl Mask {
+    /// Default `opacity` (Mitsuba's).
+    pub const DEFAULT_OPACITY: f32 = 0.5;
+
     pub fn new(opacity: Texture, nested: Bsdf) -> Self {
         Mask { opacity, nested: Box::new(nested) }
     }

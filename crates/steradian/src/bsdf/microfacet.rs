@@ -21,10 +21,11 @@ use glam::{Vec2, Vec3};
 use crate::sampling::warp;
 use crate::texture::Texture;
 
-/// The shape of the microfacet slope distribution.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The shape of the microfacet slope distribution (`distribution`; the default is Mitsuba's).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum MicrofacetKind {
     /// Gaussian random surface (Beckmann–Spizzichino).
+    #[default]
     Beckmann,
     /// GGX / Trowbridge–Reitz: long tails.
     Ggx,
@@ -39,6 +40,11 @@ pub struct MicrofacetDistribution {
 }
 
 impl MicrofacetDistribution {
+    /// Default roughness `alpha` of the rough BSDFs (Mitsuba's; dimensionless).
+    pub const DEFAULT_ALPHA: f32 = 0.1;
+    /// Default `sample_visible` (Mitsuba's).
+    pub const DEFAULT_SAMPLE_VISIBLE: bool = true;
+
     /// This distribution with α_u, α_v read at `uv` from `alpha` (textures' `eval_1`) where
     /// a BSDF has spatially varying roughness; unchanged where it has none.
     #[inline]

@@ -200,7 +200,7 @@ impl Bsdf {
 
     /// Mitsuba's BSDF for a shape that has none: `diffuse` with reflectance 0.5.
     pub fn default_diffuse() -> Bsdf {
-        Bsdf::Diffuse(Diffuse::new(Spectrum::splat(0.5).into()))
+        Bsdf::Diffuse(Diffuse::new(Spectrum::splat(Diffuse::DEFAULT_REFLECTANCE).into()))
     }
 
     /// Mitsuba's BSDF for an emitting shape that has none: a black `diffuse`.

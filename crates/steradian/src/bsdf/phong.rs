@@ -28,6 +28,7 @@ use super::fresnel::reflect;
 use super::plastic::specular_sampling_weight;
 use super::{cos_theta, BsdfSample, ShadingPoint};
 use crate::geometry::Frame;
+use crate::param::ParamError;
 use crate::radiometry::{modified_phong_normalization, phong_lobe_integral};
 use crate::sampling::warp;
 use crate::texture::Texture;
@@ -58,32 +59,54 @@ fn channel_max(t: &Texture) -> Spectrum {
 }
 
 impl Phong {
+    /// Default `diffuse_reflectance` r_d (Mitsuba 0.6's; dimensionless).
+    pub const DEFAULT_DIFFUSE_REFLECTANCE: f32 = 0.5;
+    /// Default `specular_reflectance` r_s (Mitsuba 0.6's; dimensionless).
+    pub const DEFAULT_SPECULAR_REFLECTANCE: f32 = 0.2;
+    /// Default `exponent` n (Mitsuba 0.6's).
+    pub const DEFAULT_EXPONENT: f32 = 30.0;
+
     /// The BRDF with its parameters checked: n ≥ 0 finite, reflectances ≥ 0, and
-    /// r_d + r_s ≤ 1 in every channel (energy conservation; the message gives the bound).
+    /// r_d + r_s ≤ 1 in every channel (energy conservation; the message gives the bound). A
+    /// negative reflectance is reported against itself (and the other reflectance as
+    /// related); a sum above 1 against `diffuse_reflectance`, with `specular_reflectance`
+    /// related.
     pub fn new(
         diffuse_reflectance: Texture,
         specular_reflectance: Texture,
         exponent: f32,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, ParamError> {
         if !(exponent >= 0.0 && exponent.is_finite()) {
-            return Err(format!("exponent must be a finite number ≥ 0, got {exponent}"));
+            return Err(ParamError::new(
+                "exponent",
+                format!("exponent must be a finite number ≥ 0, got {exponent}"),
+            ));
         }
         let (d, s) = (channel_max(&diffuse_reflectance), channel_max(&specular_reflectance));
         if !(d.min_element() >= 0.0 && s.min_element() >= 0.0) {
-            return Err(format!(
+            let (param, related) = if d.min_element() >= 0.0 {
+                ("specular_reflectance", "diffuse_reflectance")
+            } else {
+                ("diffuse_reflectance", "specular_reflectance")
+            };
+            let reason = format!(
                 "diffuse_reflectance and specular_reflectance must be ≥ 0, got {:?} and {:?}",
                 d.to_array(),
                 s.to_array()
-            ));
+            );
+            return Err(ParamError::new(param, reason).with_related(related));
         }
         let sum = d + s;
         if sum.max_element() > 1.0 {
-            return Err(format!(
+            let reason = format!(
                 "energy conservation requires diffuse_reflectance + specular_reflectance ≤ 1 in every channel \
                  (the albedo of this BRDF at normal incidence is their sum), but the sum reaches {} (per channel {:?})",
                 sum.max_element(),
                 sum.to_array()
-            ));
+            );
+            return Err(
+                ParamError::new("diffuse_reflectance", reason).with_related("specular_reflectance")
+            );
         }
         let n = exponent as f64;
         let w = specular_sampling_weight(&diffuse_reflectance, &specular_reflectance);
@@ -274,7 +297,8 @@ mod tests {
     fn parameters_checked() {
         let e = Phong::new(Spectrum::new(0.5, 0.7, 0.1).into(), Spectrum::splat(0.4).into(), 10.0)
             .unwrap_err();
-        assert!(e.contains("≤ 1") && e.contains("1.1"), "{e}");
+        assert!(e.reason.contains("≤ 1") && e.reason.contains("1.1"), "{e}");
+        assert_eq!((e.param, e.related), ("diffuse_reflectance", Some("specular_reflectance")));
         assert!(Phong::new(Spectrum::splat(0.5).into(), Spectrum::splat(0.5).into(), 10.0).is_ok());
         // per channel, not the sum of maxima
         assert!(Phong::new(
@@ -285,7 +309,11 @@ mod tests {
         .is_ok());
         assert!(Phong::new(Spectrum::splat(0.5).into(), Spectrum::splat(0.2).into(), -1.0)
             .unwrap_err()
+            .reason
             .contains("exponent"));
-        assert!(Phong::new(Spectrum::splat(-0.1).into(), Spectrum::splat(0.2).into(), 1.0).is_err());
+        let e = Phong::new(Spectrum::splat(-0.1).into(), Spectrum::splat(0.2).into(), 1.0);
+        assert_eq!(e.unwrap_err().param, "diffuse_reflectance");
+        let e = Phong::new(Spectrum::splat(0.1).into(), Spectrum::splat(-0.2).into(), 1.0);
+        assert_eq!(e.unwrap_err().param, "specular_reflectance");
     }
 }

@@ -85,6 +85,18 @@ pub struct Plastic {
 }
 
 impl Plastic {
+    /// Default `int_ior` (Mitsuba's): polypropylene, 1.49; `roughplastic` shares the plastic
+    /// defaults.
+    pub const DEFAULT_INT_IOR: &'static str = "polypropylene";
+    /// Default `ext_ior` (Mitsuba's): air, 1.000277.
+    pub const DEFAULT_EXT_IOR: &'static str = "air";
+    /// Default `diffuse_reflectance` (dimensionless).
+    pub const DEFAULT_DIFFUSE_REFLECTANCE: f32 = 0.5;
+    /// Default `specular_reflectance` (dimensionless factor).
+    pub const DEFAULT_SPECULAR_REFLECTANCE: f32 = 1.0;
+    /// Default `nonlinear`.
+    pub const DEFAULT_NONLINEAR: bool = false;
+
     pub fn new(
         eta: f32,
         diffuse_reflectance: Texture,

@@ -25,6 +25,9 @@ pub struct AreaLight {
 }
 
 impl AreaLight {
+    /// Default `radiance` (W/(m²·sr); Mitsuba's).
+    pub const DEFAULT_RADIANCE: f32 = 1.0;
+
     pub fn new(shape: u32, radiance: Texture) -> Self {
         AreaLight { shape, radiance }
     }

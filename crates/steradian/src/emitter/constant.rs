@@ -19,6 +19,9 @@ pub struct ConstantEnvironment {
 }
 
 impl ConstantEnvironment {
+    /// Default `radiance` (W/(m²·sr); Mitsuba's).
+    pub const DEFAULT_RADIANCE: f32 = 1.0;
+
     pub fn new(radiance: Spectrum) -> Self {
         ConstantEnvironment { radiance }
     }

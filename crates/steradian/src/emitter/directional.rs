@@ -22,6 +22,11 @@ pub struct DirectionalLight {
 }
 
 impl DirectionalLight {
+    /// Default `irradiance` (W/m²; Mitsuba's).
+    pub const DEFAULT_IRRADIANCE: f32 = 1.0;
+    /// Default direction of propagation, without `direction` or `to_world`: +z.
+    pub const DEFAULT_DIRECTION: Vec3 = Vec3::Z;
+
     pub fn new(direction: Vec3, irradiance: Spectrum) -> Result<Self, String> {
         let len = direction.length();
         if !is_positive(len) || !len.is_finite() {

@@ -21,6 +21,9 @@ pub struct PointLight {
 }
 
 impl PointLight {
+    /// Default `intensity` (W/sr; Mitsuba's).
+    pub const DEFAULT_INTENSITY: f32 = 1.0;
+
     pub fn new(position: Vec3, intensity: Spectrum) -> Self {
         PointLight { position, intensity }
     }

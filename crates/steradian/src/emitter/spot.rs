@@ -15,6 +15,7 @@ use glam::Vec3;
 use super::{EmitterSample, Support};
 use crate::geometry::is_positive;
 use crate::geometry::{Frame, Transform};
+use crate::param::ParamError;
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -32,25 +33,33 @@ pub struct SpotLight {
 }
 
 impl SpotLight {
+    /// Default `intensity` on the axis (W/sr; Mitsuba's).
+    pub const DEFAULT_INTENSITY: f32 = 1.0;
+    /// Default `cutoff_angle`, in degrees as the scene gives it (Mitsuba's).
+    pub const DEFAULT_CUTOFF_ANGLE: f32 = 20.0;
+    /// Default `beam_width` as a fraction of `cutoff_angle` (Mitsuba's 3/4).
+    pub const DEFAULT_BEAM_WIDTH_RATIO: f32 = 0.75;
+
     /// `cutoff` and `beam_width` in radians.
     pub fn new(
         to_world: &Transform,
         intensity: Spectrum,
         cutoff: f32,
         beam_width: f32,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, ParamError> {
         if !(cutoff > 0.0 && cutoff <= std::f32::consts::PI) {
-            return Err(format!(
-                "cutoff_angle must lie in (0°, 180°], got {}°",
-                cutoff.to_degrees()
+            return Err(ParamError::new(
+                "cutoff_angle",
+                format!("cutoff_angle must lie in (0°, 180°], got {}°", cutoff.to_degrees()),
             ));
         }
         if !(beam_width > 0.0 && beam_width <= cutoff) {
-            return Err(format!(
+            let reason = format!(
                 "beam_width must lie in (0°, cutoff_angle = {}°], got {}°",
                 cutoff.to_degrees(),
                 beam_width.to_degrees()
-            ));
+            );
+            return Err(ParamError::new("beam_width", reason).with_related("cutoff_angle"));
         }
         let axis = to_world.vector(Vec3::Z).normalize();
         Ok(SpotLight {

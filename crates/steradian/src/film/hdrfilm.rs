@@ -72,7 +72,8 @@ pub struct Film {
 impl Default for Film {
     /// Mitsuba's default `hdrfilm`: 768×576, gaussian filter.
     fn default() -> Self {
-        Film::new(768, 576, ReconstructionFilter::default()).expect("default film size is valid")
+        Film::new(Film::DEFAULT_WIDTH, Film::DEFAULT_HEIGHT, ReconstructionFilter::default())
+            .expect("default film size is valid")
     }
 }
 

@@ -35,15 +35,19 @@ pub struct DirectIntegrator {
 impl Default for DirectIntegrator {
     fn default() -> Self {
         DirectIntegrator {
-            emitter_samples: 1,
-            bsdf_samples: 1,
-            emitters: EmitterVisibility::Visible,
-            light_selection: LightSelection::Uniform,
+            emitter_samples: Self::DEFAULT_SHADING_SAMPLES,
+            bsdf_samples: Self::DEFAULT_SHADING_SAMPLES,
+            emitters: EmitterVisibility::default(),
+            light_selection: LightSelection::default(),
         }
     }
 }
 
 impl DirectIntegrator {
+    /// Default `shading_samples` (Mitsuba's), which `emitter_samples` and `bsdf_samples`
+    /// default to.
+    pub const DEFAULT_SHADING_SAMPLES: u32 = 1;
+
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
         let show = self.emitters == EmitterVisibility::Visible;
         let Some(si) = scene.intersect(ray) else {

@@ -13,7 +13,8 @@ pub use direct::DirectIntegrator;
 pub use irradiance::estimate_irradiance;
 pub use path::{
     parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LastVertex,
-    PathTracer, DEFAULT_BRANCHES, DEFAULT_RR_SCALE, MAX_BRANCHES,
+    PathTracer, DEFAULT_BRANCHES, DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
+    MAX_BRANCHES,
 };
 
 use crate::emitter::LightSelection;

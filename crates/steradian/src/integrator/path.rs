@@ -46,13 +46,16 @@ use crate::emitter::LightSelection;
 use crate::emitter::Support;
 use crate::geometry::{is_positive, SurfacePoint};
 use crate::geometry::{Ray, SurfaceInteraction};
+use crate::param::ParamError;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
 use crate::Spectrum;
 
-/// Whether directly visible emitters are drawn.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Whether directly visible emitters are drawn (`hide_emitters`; default visible, as in
+/// Mitsuba).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum EmitterVisibility {
+    #[default]
     Visible,
     Hidden,
 }
@@ -84,11 +87,13 @@ pub enum LastVertex {
     Mis,
 }
 
-/// The number of paths that continue from a camera ray's first hit.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// The number of paths that continue from a camera ray's first hit (`branches`; default
+/// [`Branches::Auto`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Branches {
     /// Chosen per render from a short pilot (`branching.rs`); [`DEFAULT_BRANCHES`] where no
     /// pilot runs.
+    #[default]
     Auto,
     /// This many (1 to [`MAX_BRANCHES`]; 1 = Mitsuba's estimator).
     Fixed(u32),
@@ -108,26 +113,34 @@ impl Branches {
 impl Default for PathTracer {
     fn default() -> Self {
         PathTracer {
-            max_depth: None,
-            rr_depth: 5,
+            max_depth: DEFAULT_MAX_DEPTH,
+            rr_depth: DEFAULT_RR_DEPTH,
             rr_scale: DEFAULT_RR_SCALE,
-            emitters: EmitterVisibility::Visible,
-            light_selection: LightSelection::Uniform,
-            branches: Branches::Auto,
+            emitters: EmitterVisibility::default(),
+            light_selection: LightSelection::default(),
+            branches: Branches::default(),
             last_vertex: LastVertex::default(),
         }
     }
 }
+
+/// `max_depth` where the scene does not set it: unbounded (Mitsuba's −1).
+pub const DEFAULT_MAX_DEPTH: Option<u32> = None;
+
+/// `rr_depth` where the scene does not set it (Mitsuba's).
+pub const DEFAULT_RR_DEPTH: u32 = 5;
 
 /// κ of Russian roulette's survival probability, where the scene does not set `rr_scale`
 /// (module docs; Mitsuba's is 1).
 pub const DEFAULT_RR_SCALE: f32 = 4.0;
 
 /// Checks an `rr_scale` value: finite and positive.
-pub fn parse_rr_scale(v: f32) -> Result<f32, String> {
+pub fn parse_rr_scale(v: f32) -> Result<f32, ParamError> {
     match v {
         k if k.is_finite() && k > 0.0 => Ok(k),
-        _ => Err(format!("rr_scale must be a positive number, got {v}")),
+        _ => {
+            Err(ParamError::new("rr_scale", format!("rr_scale must be a positive number, got {v}")))
+        }
     }
 }
 
@@ -138,19 +151,25 @@ pub const DEFAULT_BRANCHES: u32 = 4;
 pub const MAX_BRANCHES: u32 = 64;
 
 /// Checks a `branches` value: 1 to [`MAX_BRANCHES`].
-pub fn parse_branches(v: i64) -> Result<Branches, String> {
+pub fn parse_branches(v: i64) -> Result<Branches, ParamError> {
     match v {
         v if (1..=MAX_BRANCHES as i64).contains(&v) => Ok(Branches::Fixed(v as u32)),
-        v => Err(format!("branches must be between 1 and {MAX_BRANCHES}, got {v}")),
+        v => Err(ParamError::new(
+            "branches",
+            format!("branches must be between 1 and {MAX_BRANCHES}, got {v}"),
+        )),
     }
 }
 
 /// Mitsuba's `max_depth` convention: −1 means unbounded; other negatives are errors.
-pub fn parse_max_depth(v: i64) -> Result<Option<u32>, String> {
+pub fn parse_max_depth(v: i64) -> Result<Option<u32>, ParamError> {
     match v {
         -1 => Ok(None),
         v if v >= 0 && v <= u32::MAX as i64 => Ok(Some(v as u32)),
-        v => Err(format!("max_depth must be -1 (unbounded) or >= 0, got {v}")),
+        v => Err(ParamError::new(
+            "max_depth",
+            format!("max_depth must be -1 (unbounded) or >= 0, got {v}"),
+        )),
     }
 }
 

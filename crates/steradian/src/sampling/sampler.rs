@@ -39,7 +39,11 @@ pub struct Sampler {
 impl Default for Sampler {
     /// Mitsuba's default count and seed (4 samples per pixel, seed 0), Sobol points.
     fn default() -> Self {
-        Sampler { kind: SamplerKind::Sobol, sample_count: 4, seed: 0 }
+        Sampler {
+            kind: SamplerKind::Sobol,
+            sample_count: Sampler::DEFAULT_SAMPLE_COUNT,
+            seed: Sampler::DEFAULT_SEED,
+        }
     }
 }
 
@@ -47,6 +51,11 @@ impl Default for Sampler {
 const SOBOL_EPOCH: u64 = 1 << 16;
 
 impl Sampler {
+    /// Default `sample_count`: samples per pixel (Mitsuba's).
+    pub const DEFAULT_SAMPLE_COUNT: u32 = 4;
+    /// Default `seed` (Mitsuba's).
+    pub const DEFAULT_SEED: u64 = 0;
+
     /// The stream of numbers for sample `index` of `pixel` (an image of `width` pixels per row).
     #[inline]
     pub fn pixel_sampler(&self, pixel: UVec2, width: u32, index: u32) -> PixelSampler {

@@ -1,11 +1,13 @@
 //! Field of view as Mitsuba's projective cameras specify it.
 
 use crate::geometry::is_positive;
+use crate::param::ParamError;
 use std::fmt;
 
-/// Which image axis a given `fov` applies to (`fov_axis`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// Which image axis a given `fov` applies to (`fov_axis`; default `x`, as in Mitsuba).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum FovAxis {
+    #[default]
     X,
     Y,
     Diagonal,
@@ -48,15 +50,21 @@ pub enum FieldOfView {
 }
 
 impl FieldOfView {
+    /// Default `focal_length` without `fov` (mm of a 35 mm film equivalent; Mitsuba's).
+    pub const DEFAULT_FOCAL_LENGTH: f32 = 50.0;
+
     /// The horizontal field of view in radians for an image of `width`×`height` pixels.
-    pub fn x_fov(&self, width: u32, height: u32) -> Result<f32, String> {
+    pub fn x_fov(&self, width: u32, height: u32) -> Result<f32, ParamError> {
         let aspect = width as f64 / height as f64;
         let diagonal_px = ((width as f64).powi(2) + (height as f64).powi(2)).sqrt();
         let (degrees, axis) = match *self {
             FieldOfView::Angle { degrees, axis } => (degrees as f64, axis),
             FieldOfView::FocalLength { mm } => {
                 if !is_positive(mm) || !mm.is_finite() {
-                    return Err(format!("focal_length must be positive, got {mm} mm"));
+                    return Err(ParamError::new(
+                        "focal_length",
+                        format!("focal_length must be positive, got {mm} mm"),
+                    ));
                 }
                 // diagonal field of view of a 36×24 mm frame
                 let diag_35mm = (36.0f64 * 36.0 + 24.0 * 24.0).sqrt();
@@ -64,7 +72,10 @@ impl FieldOfView {
             }
         };
         if !(degrees > 0.0 && degrees < 180.0) {
-            return Err(format!("fov must lie strictly between 0 and 180 degrees, got {degrees}"));
+            return Err(ParamError::new(
+                "fov",
+                format!("fov must lie strictly between 0 and 180 degrees, got {degrees}"),
+            ));
         }
         let axis = match axis {
             FovAxis::Smaller => {

@@ -20,6 +20,7 @@ use glam::{Vec2, Vec3};
 
 use crate::geometry::is_positive;
 use crate::geometry::{Ray, Transform};
+use crate::param::ParamError;
 
 #[derive(Clone, Debug)]
 pub struct Perspective {
@@ -31,21 +32,35 @@ pub struct Perspective {
 }
 
 /// Checks the camera transform is rigid and the clip planes are sane.
-pub(super) fn validate(to_world: &Transform, near_clip: f32, far_clip: f32) -> Result<(), String> {
+pub(super) fn validate(
+    to_world: &Transform,
+    near_clip: f32,
+    far_clip: f32,
+) -> Result<(), ParamError> {
     let s = to_world.axis_scales();
     if (s - Vec3::ONE).abs().max_element() > 1e-3 {
-        return Err(format!("scale factors in the camera's to_world are not allowed (axis scales {:.4}, {:.4}, {:.4})", s.x, s.y, s.z));
+        return Err(ParamError::new("to_world", format!("scale factors in the camera's to_world are not allowed (axis scales {:.4}, {:.4}, {:.4})", s.x, s.y, s.z)));
     }
     if !(near_clip > 0.0 && near_clip.is_finite()) {
-        return Err(format!("near_clip must be positive, got {near_clip}"));
+        return Err(ParamError::new(
+            "near_clip",
+            format!("near_clip must be positive, got {near_clip}"),
+        ));
     }
     if !is_positive(far_clip - near_clip) {
-        return Err(format!("far_clip ({far_clip}) must exceed near_clip ({near_clip})"));
+        let reason = format!("far_clip ({far_clip}) must exceed near_clip ({near_clip})");
+        return Err(ParamError::new("far_clip", reason).with_related("near_clip"));
     }
     Ok(())
 }
 
 impl Perspective {
+    /// Default `near_clip` (m; Mitsuba's); `thinlens` shares it.
+    pub const DEFAULT_NEAR_CLIP: f32 = 0.01;
+    /// Default `far_clip` (m; Mitsuba's); `thinlens` shares it, and `focus_distance` defaults
+    /// to the far clip.
+    pub const DEFAULT_FAR_CLIP: f32 = 1e4;
+
     /// `x_fov` in radians (see [`super::FieldOfView::x_fov`]); `aspect` = width/height.
     pub fn new(
         to_world: Transform,
@@ -53,7 +68,7 @@ impl Perspective {
         aspect: f32,
         near_clip: f32,
         far_clip: f32,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, ParamError> {
         validate(&to_world, near_clip, far_clip)?;
         let tx = (x_fov / 2.0).tan();
         Ok(Perspective { to_world, tan_half: Vec2::new(tx, tx / aspect), near_clip, far_clip })

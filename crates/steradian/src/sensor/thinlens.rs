@@ -14,6 +14,7 @@ use glam::{Vec2, Vec3};
 
 use super::perspective::{validate, Perspective};
 use crate::geometry::{Ray, Transform};
+use crate::param::ParamError;
 use crate::sampling::warp;
 
 #[derive(Clone, Debug)]
@@ -35,13 +36,19 @@ impl ThinLens {
         far_clip: f32,
         aperture_radius: f32,
         focus_distance: f32,
-    ) -> Result<Self, String> {
+    ) -> Result<Self, ParamError> {
         validate(&to_world, near_clip, far_clip)?;
         if !(aperture_radius >= 0.0 && aperture_radius.is_finite()) {
-            return Err(format!("aperture_radius must be non-negative, got {aperture_radius}"));
+            return Err(ParamError::new(
+                "aperture_radius",
+                format!("aperture_radius must be non-negative, got {aperture_radius}"),
+            ));
         }
         if !(focus_distance > 0.0 && focus_distance.is_finite()) {
-            return Err(format!("focus_distance must be positive, got {focus_distance}"));
+            return Err(ParamError::new(
+                "focus_distance",
+                format!("focus_distance must be positive, got {focus_distance}"),
+            ));
         }
         let tx = (x_fov / 2.0).tan();
         Ok(ThinLens {

@@ -36,6 +36,13 @@ pub struct Cylinder {
 }
 
 impl Cylinder {
+    /// Default `p0` (m; Mitsuba's).
+    pub const DEFAULT_P0: Vec3 = Vec3::ZERO;
+    /// Default `p1` (m; Mitsuba's).
+    pub const DEFAULT_P1: Vec3 = Vec3::Z;
+    /// Default `radius` (m; Mitsuba's).
+    pub const DEFAULT_RADIUS: f32 = 1.0;
+
     pub fn new(
         p0: Vec3,
         p1: Vec3,

@@ -46,6 +46,9 @@ pub struct Mesh {
 }
 
 impl Mesh {
+    /// Default `face_normals` of `obj` and `ply` (Mitsuba's).
+    pub const DEFAULT_FACE_NORMALS: bool = false;
+
     /// Builds a world-space mesh from object-space data.
     ///
     /// Fails when an index is out of range, a position is not finite, or the normal/uv arrays

@@ -31,10 +31,13 @@ pub use cube::cube;
 pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use mesh::{Mesh, MeshData};
-pub use obj::read_obj;
+pub use obj::{read_obj, DEFAULT_FLIP_TEX_COORDS};
 pub use ply::read_ply;
 pub use rectangle::Rectangle;
 pub use sphere::Sphere;
+
+/// Default `flip_normals` of every shape (Mitsuba's).
+pub const DEFAULT_FLIP_NORMALS: bool = false;
 
 /// Every shape steradian knows.
 #[derive(Clone, Debug)]

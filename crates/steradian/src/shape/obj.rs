@@ -24,6 +24,9 @@ use glam::{Vec2, Vec3};
 use super::{MeshData, ShapeError};
 
 /// Reads an OBJ file into object-space mesh data.
+/// Default `flip_tex_coords` (Mitsuba's): OBJ's texture origin is bottom-left.
+pub const DEFAULT_FLIP_TEX_COORDS: bool = true;
+
 pub fn read_obj(path: &Path, flip_tex_coords: bool) -> Result<MeshData, ShapeError> {
     let file = std::fs::File::open(path)
         .map_err(|e| ShapeError(format!("cannot open OBJ file \"{}\": {e}", path.display())))?;

@@ -39,6 +39,11 @@ pub struct Sphere {
 }
 
 impl Sphere {
+    /// Default `center` (m; Mitsuba's).
+    pub const DEFAULT_CENTER: Vec3 = Vec3::ZERO;
+    /// Default `radius` (m; Mitsuba's).
+    pub const DEFAULT_RADIUS: f32 = 1.0;
+
     pub fn new(center: Vec3, radius: f32, to_world: &Transform, flip_normals: bool) -> Sphere {
         let r = radius.abs();
         let local = Transform::translate(center).then_after(&Transform {

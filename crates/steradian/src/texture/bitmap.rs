@@ -26,16 +26,18 @@ use super::image_file::LoadedImage;
 use crate::spectrum::{luminance, LUMINANCE_WEIGHTS};
 use crate::Spectrum;
 
-/// How texels are combined.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// How texels are combined (`filter_type`; the default is Mitsuba's).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum FilterType {
+    #[default]
     Bilinear,
     Nearest,
 }
 
-/// What lookups outside [0, 1]² see.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+/// What lookups outside [0, 1]² see (`wrap_mode`; the default is Mitsuba's).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum WrapMode {
+    #[default]
     Repeat,
     Mirror,
     Clamp,
@@ -108,6 +110,9 @@ impl fmt::Debug for Bitmap {
 }
 
 impl Bitmap {
+    /// Default `raw` (Mitsuba's): sRGB-encoded images are decoded to linear values.
+    pub const DEFAULT_RAW: bool = false;
+
     /// A texture from decoded pixels; `raw` keeps sRGB-encoded values as they are.
     pub fn new(
         name: &str,

@@ -27,6 +27,11 @@ pub struct Checkerboard {
 }
 
 impl Checkerboard {
+    /// Default `color0` (Mitsuba's; dimensionless).
+    pub const DEFAULT_COLOR0: f32 = 0.4;
+    /// Default `color1` (Mitsuba's; dimensionless).
+    pub const DEFAULT_COLOR1: f32 = 0.2;
+
     pub fn new(color0: Texture, color1: Texture, to_uv: UvTransform) -> Self {
         Checkerboard { color0: Box::new(color0), color1: Box::new(color1), to_uv }
     }

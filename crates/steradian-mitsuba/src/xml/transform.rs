@@ -8,11 +8,11 @@
 use glam::Vec3;
 use steradian::geometry::{Transform, TransformError};
 
+use super::attrs::{tokenize, Attrs};
 use crate::error::LoadError;
-use crate::xml::Attrs;
 
 /// Parses one transform operation element (`op` is its tag name, after upgrade).
-pub(crate) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> {
+pub(super) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> {
     match op {
         "translate" => {
             attrs.allow(&["x", "y", "z", "value"])?;
@@ -42,7 +42,7 @@ pub(crate) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> 
         "matrix" => {
             attrs.allow(&["value"])?;
             let a = attrs.require("value")?;
-            let tokens = crate::xml::tokenize(&a.value);
+            let tokens = tokenize(&a.value);
             let mut v = Vec::with_capacity(16);
             for t in &tokens {
                 v.push(attrs.number(a, t)? as f32);
@@ -94,7 +94,7 @@ fn xyz(attrs: &Attrs, default: f64) -> Result<Vec3, LoadError> {
             return Err(attrs
                 .error(format!("<{}> can't mix 'value' with 'x'/'y'/'z' attributes", attrs.elem)));
         }
-        let tokens = crate::xml::tokenize(&a.value);
+        let tokens = tokenize(&a.value);
         let nums = tokens.iter().map(|t| attrs.number(a, t)).collect::<Result<Vec<_>, _>>()?;
         return match nums.len() {
             1 => Ok(Vec3::splat(nums[0] as f32)),
@@ -124,7 +124,7 @@ fn xyz(attrs: &Attrs, default: f64) -> Result<Vec3, LoadError> {
 /// A required attribute of exactly 3 numbers (`origin="0, 0, 4"`).
 fn vec3_attr(attrs: &Attrs, name: &str) -> Result<Vec3, LoadError> {
     let a = attrs.require(name)?;
-    let tokens = crate::xml::tokenize(&a.value);
+    let tokens = tokenize(&a.value);
     if tokens.len() != 3 {
         return Err(LoadError::at(
             &a.pos,

@@ -31,6 +31,8 @@ pub mod scene;
 pub mod sensor;
 pub mod shape;
 pub mod spectrum;
+#[cfg(any(test, feature = "testkit"))]
+pub mod testkit;
 pub mod texture;
 
 pub use glam::{Mat3, Mat4, Vec2, Vec3};

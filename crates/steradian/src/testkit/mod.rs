@@ -1,0 +1,19 @@
+//! The shared test kit: what the tests of every crate check with, in one place.
+//!
+//! Compiled for this crate's own tests and, through the `testkit` feature, for the other
+//! crates' tests (their `[dev-dependencies]` enable it); normal builds do not compile it.
+//!
+//! - [`chi2`]: Pearson's χ² goodness of fit of sampled directions against the density the
+//!   code reports, for BSDFs, emitters and shapes alike.
+//! - [`bsdf`]: the checks every BSDF passes (χ², sample weight and pdf consistency,
+//!   albedo) and the microfacet parameter grid.
+//! - [`stats`]: mean and standard error of i.i.d. samples.
+//! - [`files`]: a fresh temporary directory per test.
+
+pub mod bsdf;
+pub mod chi2;
+pub mod files;
+pub mod stats;
+
+pub use files::{temp_dir, write_file};
+pub use stats::MeanError;

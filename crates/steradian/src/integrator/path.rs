@@ -462,3 +462,6 @@ impl PathTracer {
         Some(st)
     }
 }
+
+#[cfg(test)]
+mod tests;

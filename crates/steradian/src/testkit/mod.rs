@@ -7,12 +7,15 @@
 //!   code reports, for BSDFs, emitters and shapes alike.
 //! - [`bsdf`]: the checks every BSDF passes (χ², sample weight and pdf consistency,
 //!   albedo) and the microfacet parameter grid.
+//! - [`scenes`]: small scenes built in code with their closed-form radiance (a furnace, a
+//!   plane under a point light), and the radiance estimate along a ray.
 //! - [`stats`]: mean and standard error of i.i.d. samples.
 //! - [`files`]: a fresh temporary directory per test.
 
 pub mod bsdf;
 pub mod chi2;
 pub mod files;
+pub mod scenes;
 pub mod stats;
 
 pub use files::{temp_dir, write_file};

@@ -140,3 +140,6 @@ impl Emitter {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

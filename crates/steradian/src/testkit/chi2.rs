@@ -80,8 +80,9 @@ impl CapGrid {
 
 /// The p-value of `n` draws of `sample` (a direction, or `None` for a rejected draw) against
 /// the density `pdf` on `grid`. The density may integrate to less than 1: rejected draws form
-/// one more cell, whose expected count is what the density leaves of `n`. Every direction
-/// drawn must lie in the cap, where the density must vanish outside it.
+/// one more cell, whose expected count is what the density leaves of `n`; it must not
+/// integrate to more than 1 (+10⁻³ for the quadrature). Every direction drawn must lie in the
+/// cap, and the density must vanish outside it.
 pub fn directions_pvalue(
     grid: &CapGrid,
     n: usize,
@@ -101,6 +102,14 @@ pub fn directions_pvalue(
     }
     let mut expected = grid.expected(n, pdf);
     let accepted: f64 = expected.iter().sum();
+    // A density scaled by 1 + ε changes each cell by ε only (χ² grows by ε²·n, nothing at
+    // ε = 1 %), but moves the rejected cell by ε·n when the density integrates to less than 1;
+    // above 1 it must fail here, with the quadrature's error allowed.
+    assert!(
+        accepted <= n as f64 * (1.0 + 1e-3),
+        "the density integrates to {} > 1 over the cap",
+        accepted / n as f64
+    );
     let expected_rejected = (n as f64 - accepted).max(0.0);
     assert!(
         rejected == 0.0 || expected_rejected > 0.0,

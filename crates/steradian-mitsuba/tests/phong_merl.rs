@@ -10,11 +10,11 @@ use std::path::{Path, PathBuf};
 
 use steradian::bsdf::{
     Bsdf, InternalScattering, MerlTable, MicrofacetDistribution, MicrofacetKind, RoughPlastic,
-    ShadingPoint,
 };
 use steradian::film::Image;
 use steradian::integrator::{render, RenderOptions};
 use steradian::sampling::{Pcg32, SamplerKind};
+use steradian::testkit::bsdf::sp;
 use steradian::testkit::{temp_dir, write_file};
 use steradian::{Spectrum, Vec2, Vec3};
 use steradian_mitsuba::{load_file, LoadError};
@@ -23,10 +23,6 @@ use common::check_error;
 
 fn repo_file(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(name)
-}
-
-fn sp() -> ShadingPoint {
-    ShadingPoint::at_uv(Vec2::ZERO)
 }
 
 /// Renders with i.i.d. samples (so that per-pixel standard errors are valid); returns the

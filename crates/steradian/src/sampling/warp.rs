@@ -169,10 +169,7 @@ mod tests {
         }
     }
     use crate::sampling::Pcg32;
-
-    fn u2(r: &mut Pcg32) -> Vec2 {
-        Vec2::new(r.next_f32(), r.next_f32())
-    }
+    use crate::testkit::u2;
 
     /// Integrating f/pdf over samples estimates ∫f; with f = pdf the estimate is the measure of
     /// the domain. Checks that each warp's density integrates to 1 and that points land in

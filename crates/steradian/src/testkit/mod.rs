@@ -20,3 +20,8 @@ pub mod stats;
 
 pub use files::{temp_dir, write_file};
 pub use stats::MeanError;
+
+/// Two uniform numbers in [0, 1) from `rng`.
+pub fn u2(rng: &mut crate::sampling::Pcg32) -> glam::Vec2 {
+    glam::Vec2::new(rng.next_f32(), rng.next_f32())
+}

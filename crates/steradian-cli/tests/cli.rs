@@ -4,16 +4,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use steradian::film::{read_exr, Image};
+use steradian::testkit::temp_dir;
 
 const BIN: &str = env!("CARGO_BIN_EXE_steradian");
-
-/// A fresh, empty working directory for one test.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("steradian-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
 
 /// Runs `steradian args...` in `dir`.
 fn run(dir: &Path, args: &[&str]) -> Output {

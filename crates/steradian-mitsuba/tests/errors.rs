@@ -1,7 +1,10 @@
 //! Malformed inputs: each error names the problem and the right line:column.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 
+use steradian::testkit::{temp_dir, write_file};
 use steradian_mitsuba::{parse_file, parse_string, LoadError, ObjectTag};
 
 fn err(xml: &str) -> LoadError {
@@ -17,12 +20,10 @@ fn err_with(xml: &str, defines: &[(&str, &str)]) -> LoadError {
     }
 }
 
+/// The error of a scene given as a string is at `<string>:line:col` and names `needle`.
 #[track_caller]
 fn check(e: &LoadError, line: u32, col: u32, needle: &str) {
-    let pos = e.pos.as_ref().unwrap_or_else(|| panic!("no position in: {e}"));
-    assert_eq!((pos.line, pos.col), (line, col), "wrong position in: {e}");
-    assert!(e.message.contains(needle), "message {:?} does not contain {:?}", e.message, needle);
-    assert!(e.to_string().starts_with(&format!("<string>:{line}:{col}: error: ")), "{e}");
+    common::check_error(e, Path::new("<string>"), line, col, &[needle]);
 }
 
 #[test]
@@ -170,15 +171,14 @@ fn include_of_missing_file() {
 
 #[test]
 fn include_cycle() {
-    let dir = std::env::temp_dir().join(format!("steradian-mitsuba-cycle-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(
-        dir.join("a.xml"),
+    let dir = temp_dir("include-cycle");
+    let a = write_file(
+        &dir,
+        "a.xml",
         "<scene version=\"3.0.0\">\n  <include filename=\"b.xml\"/>\n</scene>",
-    )
-    .unwrap();
-    std::fs::write(dir.join("b.xml"), "<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\"/>\n<include filename=\"a.xml\"/>\n</scene>").unwrap();
-    let e = parse_file(&dir.join("a.xml"), &[]).unwrap_err();
+    );
+    write_file(&dir, "b.xml", "<scene version=\"3.0.0\">\n<bsdf type=\"diffuse\"/>\n<include filename=\"a.xml\"/>\n</scene>");
+    let e = parse_file(&a, &[]).unwrap_err();
     let pos = e.pos.clone().unwrap();
     assert_eq!(*pos.file, dir.join("b.xml"), "{e}");
     assert_eq!((pos.line, pos.col), (3, 1), "{e}");

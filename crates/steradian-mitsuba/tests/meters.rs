@@ -1,10 +1,13 @@
 //! Meters read delta lights exactly (steradian samples every emitter at the measurement point,
 //! unlike Mitsuba's meter, which reads 0 for them), lights add, and the error bars are honest.
 
+mod common;
+
 use std::path::Path;
 
 use steradian::radiometry;
 use steradian::render::{render, RenderOptions};
+use steradian::testkit::{temp_dir, write_file};
 
 /// Renders sensor `id` of an inline scene; returns (value, stderr) of the single pixel.
 fn measure(xml: &str, id: &str, spp: u32, seed: u64) -> ([f64; 3], [f64; 3]) {
@@ -148,11 +151,8 @@ fn error_bars_cover_the_truth_95_percent_of_the_time() {
     // 200 independent measurements of a noisy case (a disk emitter's irradiance, 256 samples
     // each, cosine + light sampling): value ± 2·stderr must hold the closed form in 93–97 %
     // of them (a normal estimator covers 95.4 %; with 200 seeds the binomial sd is 1.5 %).
-    let xml = std::fs::read_to_string(concat!(
-        env!("CARGO_MANIFEST_DIR"),
-        "/../../scenes/validation/disk_on_axis_irradiance.xml"
-    ))
-    .unwrap();
+    let xml =
+        std::fs::read_to_string(common::validation_scene("disk_on_axis_irradiance.xml")).unwrap();
     let expected = 0.6957160201721342;
     let scene =
         steradian_mitsuba::load_string(&xml, Path::new("disk.xml"), Path::new("."), &[]).unwrap();
@@ -186,10 +186,8 @@ fn a_triangle_mesh_emitter_reads_like_the_rectangle_it_tiles() {
     // the origin facing +z: E = π·L·F, F = 0.167375010) with the emitter given as two OBJ
     // triangles: solid-angle sampling of the triangles (chosen by area, density pmf/Ω) and
     // the MIS densities of cosine-sampled hits must agree with each other and the closed form.
-    let dir = std::env::temp_dir().join(format!("steradian-tri-emitter-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    std::fs::write(dir.join("rect.obj"), "v 0 0 1\nv 2 0 1\nv 2 1 1\nv 0 1 1\nf 1 4 3\nf 1 3 2\n")
-        .unwrap();
+    let dir = temp_dir("tri-emitter");
+    write_file(&dir, "rect.obj", "v 0 0 1\nv 2 0 1\nv 2 1 1\nv 0 1 1\nf 1 4 3\nf 1 3 2\n");
     let xml = r#"<scene version="3.0.0"><integrator type="path"><integer name="max_depth" value="1"/></integrator>
         <shape type="obj"><string name="filename" value="rect.obj"/><emitter type="area"><rgb name="radiance" value="2, 3, 4"/></emitter></shape>
         <shape type="disk"><transform name="to_world"><scale value="1e-4"/></transform>

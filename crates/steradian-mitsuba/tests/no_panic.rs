@@ -1,5 +1,7 @@
 //! Truncated real scenes and random bytes must give `Err`, never a panic.
 
+mod common;
+
 use std::path::Path;
 
 use steradian_mitsuba::parse_string;
@@ -15,16 +17,13 @@ impl Rng {
     }
 }
 
+/// Every test scene: name and text.
 fn scenes() -> Vec<(String, String)> {
-    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes");
-    let mut v: Vec<(String, String)> = std::fs::read_dir(&dir)
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+    let v: Vec<(String, String)> = common::all_scenes()
+        .into_iter()
         .map(|p| (p.display().to_string(), std::fs::read_to_string(&p).unwrap()))
         .collect();
-    v.sort();
-    assert_eq!(v.len(), 13);
+    assert_eq!(v.len(), 15, "the scenes of tests/reference/ and scenes/validation/");
     v
 }
 

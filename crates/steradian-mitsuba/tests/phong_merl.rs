@@ -2,35 +2,27 @@
 //! known BRDFs render like those BRDFs (statistically), the shipped MERL asset is what its
 //! documentation says, and bad input gives errors at file:line:column.
 
+mod common;
+
 use std::io::{Read, Write};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
 use steradian::bsdf::{
     Bsdf, InternalScattering, MerlTable, MicrofacetDistribution, MicrofacetKind, RoughPlastic,
-    ShadingPoint,
 };
 use steradian::film::Image;
 use steradian::render::{render, RenderOptions};
 use steradian::sampling::{Pcg32, SamplerKind};
+use steradian::testkit::bsdf::sp;
+use steradian::testkit::{temp_dir, write_file};
 use steradian::{Spectrum, Vec2, Vec3};
 use steradian_mitsuba::{load_file, LoadError};
 
+use common::check_error;
+
 fn repo_file(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../..").join(name)
-}
-
-/// A fresh directory for one test's files.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("steradian-phong-merl-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn sp() -> ShadingPoint {
-    ShadingPoint::at_uv(Vec2::ZERO)
 }
 
 /// Renders with i.i.d. samples (so that per-pixel standard errors are valid); returns the
@@ -166,17 +158,17 @@ fn compare_table_with_analytic(test: &str, analytic: &Bsdf, analytic_xml: &str) 
 /// [`compare_table_with_analytic`] for the MERL file `merl_bytes`.
 fn compare_file_with_analytic(test: &str, merl_bytes: &[u8], analytic: &Bsdf, analytic_xml: &str) {
     let dir = temp_dir(test);
-    std::fs::write(dir.join("t.binary"), merl_bytes).unwrap();
-    std::fs::write(
-        dir.join("merl.xml"),
+    write_file(&dir, "t.binary", merl_bytes);
+    let merl_file = write_file(
+        &dir,
+        "merl.xml",
         sphere_scene(r#"<bsdf type="merl"><string name="filename" value="t.binary"/></bsdf>"#),
-    )
-    .unwrap();
-    std::fs::write(dir.join("analytic.xml"), sphere_scene(analytic_xml)).unwrap();
+    );
+    let analytic_file = write_file(&dir, "analytic.xml", sphere_scene(analytic_xml));
     let spp = 64;
     // different seeds: the two images are independent, so σ² adds
-    let (a, sa, scene) = render_with_stderr(&dir.join("merl.xml"), &[], spp, 1);
-    let (b, sb, _) = render_with_stderr(&dir.join("analytic.xml"), &[], spp, 2);
+    let (a, sa, scene) = render_with_stderr(&merl_file, &[], spp, 1);
+    let (b, sb, _) = render_with_stderr(&analytic_file, &[], spp, 2);
 
     let merl = scene.scene.bsdfs.iter().find(|b| matches!(b, Bsdf::Merl(_))).unwrap();
     let mut rng = Pcg32::new(5, 9);
@@ -280,33 +272,16 @@ fn shipped_asset_renders_like_roughplastic() {
 fn load_err(test: &str, bsdf: &str, files: &[(&str, &[u8])]) -> (PathBuf, LoadError) {
     let dir = temp_dir(test);
     for (name, bytes) in files {
-        std::fs::write(dir.join(name), bytes).unwrap();
+        write_file(&dir, name, bytes);
     }
     let xml =
         format!("<scene version=\"3.0.0\">\n<shape type=\"sphere\">\n  {bsdf}\n</shape>\n</scene>");
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, xml).unwrap();
+    let path = write_file(&dir, "scene.xml", xml);
     match catch_unwind(AssertUnwindSafe(|| load_file(&path, &[]))) {
         Ok(Ok(_)) => panic!("expected an error for {bsdf}"),
         Ok(Err(e)) => (path, e),
         Err(_) => panic!("the loader panicked on {bsdf}"),
     }
-}
-
-#[track_caller]
-fn check(path: &Path, e: &LoadError, line: u32, col: u32, needles: &[&str]) {
-    let pos = e.pos.as_ref().unwrap_or_else(|| panic!("no position in: {e}"));
-    assert_eq!(*pos.file, path, "wrong file in: {e}");
-    assert_eq!((pos.line, pos.col), (line, col), "wrong position in: {e}");
-    for needle in needles {
-        assert!(
-            e.message.contains(needle),
-            "message {:?} does not contain {:?}",
-            e.message,
-            needle
-        );
-    }
-    assert!(e.to_string().starts_with(&format!("{}:{line}:{col}: error: ", path.display())), "{e}");
 }
 
 const MERL_FILE: &str =
@@ -315,22 +290,22 @@ const MERL_FILE: &str =
 #[test]
 fn merl_file_errors() {
     let (p, e) = load_err("merl-missing", MERL_FILE, &[]);
-    check(&p, &e, 4, 5, &["<bsdf type=\"merl\">", "cannot read MERL file", "m.binary"]);
+    check_error(&e, &p, 4, 5, &["<bsdf type=\"merl\">", "cannot read MERL file", "m.binary"]);
 
     let good = MerlTable::tabulate(|_, _| Spectrum::splat(0.1)).to_bytes(0.0);
     let (p, e) = load_err("merl-truncated", MERL_FILE, &[("m.binary", &good[..good.len() / 2])]);
-    check(&p, &e, 4, 5, &["m.binary", "truncated", "34992012"]);
+    check_error(&e, &p, 4, 5, &["m.binary", "truncated", "34992012"]);
 
     let mut dims = good.clone();
     dims[0..4].copy_from_slice(&45i32.to_le_bytes());
     let (p, e) = load_err("merl-dims", MERL_FILE, &[("m.binary", &dims)]);
-    check(&p, &e, 4, 5, &["wrong dimensions 45×90×180", "90×90×180"]);
+    check_error(&e, &p, 4, 5, &["wrong dimensions 45×90×180", "90×90×180"]);
 
     let (p, e) = load_err("merl-garbage", MERL_FILE, &[("m.binary", b"\x1f\x8bnot gzip at all")]);
-    check(&p, &e, 4, 5, &["gzip"]);
+    check_error(&e, &p, 4, 5, &["gzip"]);
 
     let (p, e) = load_err("merl-nofile", "<bsdf type=\"merl\"/>", &[]);
-    check(&p, &e, 3, 3, &["missing 'filename'"]);
+    check_error(&e, &p, 3, 3, &["missing 'filename'"]);
 }
 
 #[test]
@@ -340,29 +315,35 @@ fn phong_parameter_errors() {
         "<bsdf type=\"phong\">\n    <float name=\"exponent\" value=\"-2\"/>\n</bsdf>",
         &[],
     );
-    check(&p, &e, 4, 5, &["<bsdf type=\"phong\">", "exponent must be a finite number ≥ 0, got -2"]);
+    check_error(
+        &e,
+        &p,
+        4,
+        5,
+        &["<bsdf type=\"phong\">", "exponent must be a finite number ≥ 0, got -2"],
+    );
 
     let bsdf = "<bsdf type=\"phong\">\n    <rgb name=\"diffuse_reflectance\" value=\"0.6, 0.2, 0.2\"/>\n    <rgb name=\"specular_reflectance\" value=\"0.5\"/>\n</bsdf>";
     let (p, e) = load_err("phong-energy", bsdf, &[]);
-    check(&p, &e, 4, 5, &["energy conservation", "≤ 1", "reaches 1.1"]);
+    check_error(&e, &p, 4, 5, &["energy conservation", "≤ 1", "reaches 1.1"]);
 
     // specular only: the error is at the specular reflectance
     let bsdf =
         "<bsdf type=\"phong\">\n    <float name=\"specular_reflectance\" value=\"0.9\"/>\n</bsdf>";
     let (p, e) = load_err("phong-energy-default", bsdf, &[]);
-    check(&p, &e, 4, 5, &["reaches 1.4"]);
+    check_error(&e, &p, 4, 5, &["reaches 1.4"]);
 
     // a negative specular reflectance: the error is at it, not at the diffuse one before it
     let bsdf = "<bsdf type=\"phong\">\n    <rgb name=\"diffuse_reflectance\" value=\"0.2\"/>\n    <rgb name=\"specular_reflectance\" value=\"0.1, -0.1, 0.1\"/>\n</bsdf>";
     let (p, e) = load_err("phong-negative-specular", bsdf, &[]);
-    check(&p, &e, 5, 5, &["diffuse_reflectance and specular_reflectance must be ≥ 0"]);
+    check_error(&e, &p, 5, 5, &["diffuse_reflectance and specular_reflectance must be ≥ 0"]);
 
     let (p, e) = load_err(
         "phong-unknown",
         "<bsdf type=\"phong\">\n    <float name=\"shininess\" value=\"2\"/>\n</bsdf>",
         &[],
     );
-    check(&p, &e, 4, 5, &["unreferenced property 'shininess'"]);
+    check_error(&e, &p, 4, 5, &["unreferenced property 'shininess'"]);
 }
 
 #[test]

@@ -2,9 +2,12 @@
 //! names the problem in plain words, names the right file and line:column, and the loader
 //! never panics.
 
+mod common;
+
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 
+use steradian::testkit::{temp_dir, write_file};
 use steradian_mitsuba::{load_file, load_string, LoadError};
 
 /// Wraps scene-level elements: the first line of `body` is line 2 of the file.
@@ -32,18 +35,7 @@ fn err(xml: &str) -> LoadError {
 /// The error is at `bad.xml:line:col` and its message contains every needle.
 #[track_caller]
 fn check(e: &LoadError, line: u32, col: u32, needles: &[&str]) {
-    let pos = e.pos.as_ref().unwrap_or_else(|| panic!("no position in: {e}"));
-    assert_eq!(*pos.file, PathBuf::from("bad.xml"), "wrong file in: {e}");
-    assert_eq!((pos.line, pos.col), (line, col), "wrong position in: {e}");
-    for needle in needles {
-        assert!(
-            e.message.contains(needle),
-            "message {:?} does not contain {:?}",
-            e.message,
-            needle
-        );
-    }
-    assert!(e.to_string().starts_with(&format!("bad.xml:{line}:{col}: error: ")), "{e}");
+    common::check_error(e, Path::new("bad.xml"), line, col, needles);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -192,15 +184,6 @@ fn mistyped_parameters() {
 // ---------------------------------------------------------------------------------------------
 // Meshes: the error is in the scene file, at the filename, and names the mesh file.
 
-/// A fresh directory for one test's files.
-fn temp_dir(name: &str) -> PathBuf {
-    let dir =
-        std::env::temp_dir().join(format!("steradian-plugin-errors-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
 /// Writes `mesh` (if any) as `dir/mesh_name` and a scene loading it with a `<shape type>`;
 /// returns the scene path and the error. The `filename` property is at line 3, column 5.
 fn mesh_err(
@@ -211,13 +194,12 @@ fn mesh_err(
 ) -> (PathBuf, LoadError) {
     let dir = temp_dir(test);
     if let Some(bytes) = mesh {
-        std::fs::write(dir.join(mesh_name), bytes).unwrap();
+        write_file(&dir, mesh_name, bytes);
     }
     let xml = format!(
         "<scene version=\"3.0.0\">\n<shape type=\"{shape_type}\">\n    <string name=\"filename\" value=\"{mesh_name}\"/>\n</shape>\n</scene>"
     );
-    let path = dir.join("scene.xml");
-    std::fs::write(&path, xml).unwrap();
+    let path = write_file(&dir, "scene.xml", xml);
     let r = catch_unwind(AssertUnwindSafe(|| load_file(&path, &[])));
     match r {
         Ok(Ok(_)) => panic!("expected an error for {shape_type} {mesh_name}"),
@@ -226,20 +208,11 @@ fn mesh_err(
     }
 }
 
+/// The error is at the `filename` property of [`mesh_err`]'s scene (line 3, column 5) and
+/// its message contains every needle.
 #[track_caller]
 fn check_mesh(path: &Path, e: &LoadError, needles: &[&str]) {
-    let pos = e.pos.as_ref().unwrap_or_else(|| panic!("no position in: {e}"));
-    assert_eq!(*pos.file, path, "wrong file in: {e}");
-    assert_eq!((pos.line, pos.col), (3, 5), "wrong position in: {e}");
-    for needle in needles {
-        assert!(
-            e.message.contains(needle),
-            "message {:?} does not contain {:?}",
-            e.message,
-            needle
-        );
-    }
-    assert!(e.to_string().starts_with(&format!("{}:3:5: error: ", path.display())), "{e}");
+    common::check_error(e, path, 3, 5, needles);
 }
 
 #[test]
@@ -293,10 +266,9 @@ fn truncated_binary_ply() {
     let whole = binary_ply();
     // The whole file loads.
     let dir = temp_dir("ply-whole");
-    std::fs::write(dir.join("tri.ply"), &whole).unwrap();
+    write_file(&dir, "tri.ply", &whole);
     let ok = "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<shape type=\"ply\">\n<string name=\"filename\" value=\"tri.ply\"/>\n</shape>\n</scene>";
-    std::fs::write(dir.join("ok.xml"), ok).unwrap();
-    load_file(&dir.join("ok.xml"), &[]).unwrap();
+    load_file(&write_file(&dir, "ok.xml", ok), &[]).unwrap();
     // Cut inside the vertex data and inside the face list.
     let header_end = whole.windows(11).position(|w| w == b"end_header\n").unwrap() + 11;
     let (path, e) = mesh_err("ply-trunc-v", "ply", "cut.ply", Some(&whole[..header_end + 17]));

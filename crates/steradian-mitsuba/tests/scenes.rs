@@ -1,13 +1,13 @@
 //! The real scenes parse, with spot checks of values.
 
-use std::path::{Path, PathBuf};
+mod common;
 
+use std::path::Path;
+
+use common::{reference_scene, validation_scene};
 use glam::Vec3;
+use steradian::testkit::{temp_dir, write_file};
 use steradian_mitsuba::{parse_file, parse_string, ObjectTag, PluginNode};
-
-fn scene_path(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/scenes").join(name)
-}
 
 fn close(a: Vec3, b: Vec3) -> bool {
     (a - b).abs().max_element() < 1e-5
@@ -27,23 +27,9 @@ fn read_everything(n: &PluginNode) {
 
 #[test]
 fn all_scenes_parse() {
-    let names = [
-        "cornell.xml",
-        "furnace.xml",
-        "materials.xml",
-        "pointlight.xml",
-        "veach.xml",
-        "area_emitter_one_sided.xml",
-        "disk_on_axis_irradiance.xml",
-        "emissive_room.xml",
-        "env_constant_irradiance.xml",
-        "furnace_convex_sphere.xml",
-        "point_inverse_square.xml",
-        "point_normal_incidence.xml",
-        "rect_parallel_corner_irradiance.xml",
-    ];
-    for n in names {
-        let s = parse_file(&scene_path(n), &[]).unwrap_or_else(|e| panic!("{n}: {e}"));
+    for path in common::all_scenes() {
+        let n = path.display();
+        let s = parse_file(&path, &[]).unwrap_or_else(|e| panic!("{n}: {e}"));
         assert_eq!(s.tag, ObjectTag::Scene);
         assert!(!s.children.is_empty(), "{n}");
         read_everything(&s);
@@ -52,7 +38,7 @@ fn all_scenes_parse() {
 
 #[test]
 fn cornell_values() {
-    let s = parse_file(&scene_path("cornell.xml"), &[]).unwrap();
+    let s = parse_file(&reference_scene("cornell.xml"), &[]).unwrap();
     let integ = &s.children_of(ObjectTag::Integrator)[0].node;
     assert_eq!(integ.plugin_type, "path");
     assert_eq!(integ.props.get_int("max_depth").unwrap(), Some(8));
@@ -102,7 +88,7 @@ fn cornell_values() {
 #[test]
 fn defines_override_defaults() {
     let d = [("spp".to_string(), "7".to_string()), ("res".to_string(), "32".to_string())];
-    let s = parse_file(&scene_path("cornell.xml"), &d).unwrap();
+    let s = parse_file(&reference_scene("cornell.xml"), &d).unwrap();
     let sensor = &s.children_of(ObjectTag::Sensor)[0].node;
     assert_eq!(
         sensor.children_of(ObjectTag::Sampler)[0].node.props.get_int("sample_count").unwrap(),
@@ -116,7 +102,7 @@ fn defines_override_defaults() {
 
 #[test]
 fn validation_scene_values() {
-    let s = parse_file(&scene_path("point_normal_incidence.xml"), &[]).unwrap();
+    let s = parse_file(&validation_scene("point_normal_incidence.xml"), &[]).unwrap();
     let em = &s.children_of(ObjectTag::Emitter)[0].node;
     assert_eq!(em.props.get_point("position").unwrap(), Some(Vec3::new(0.0, 0.0, 2.0)));
     assert_eq!(
@@ -128,7 +114,7 @@ fn validation_scene_values() {
     assert!((d.length() - 1.0).abs() < 1e-6);
 
     // Row-major matrix: translation in the last column.
-    let s = parse_file(&scene_path("disk_on_axis_irradiance.xml"), &[]).unwrap();
+    let s = parse_file(&validation_scene("disk_on_axis_irradiance.xml"), &[]).unwrap();
     let disk = &s.children_of(ObjectTag::Shape)[0].node;
     let m = disk.props.get_transform("to_world").unwrap().unwrap();
     assert!(close(m.point(Vec3::ZERO), Vec3::new(0.0, 0.0, 1.5)));
@@ -145,7 +131,7 @@ fn validation_scene_values() {
 
 #[test]
 fn veach_lookat_after_scale() {
-    let s = parse_file(&scene_path("veach.xml"), &[]).unwrap();
+    let s = parse_file(&reference_scene("veach.xml"), &[]).unwrap();
     let plate = s.ids.get("plate_alpha_0.1").unwrap();
     let m = plate.props.get_transform("to_world").unwrap().unwrap();
     // Origin of the plate is the lookat origin; local +z points at the target.
@@ -219,19 +205,19 @@ fn forward_references_and_named_refs() {
 
 #[test]
 fn includes_merge_children() {
-    let dir = std::env::temp_dir().join(format!("steradian-mitsuba-inc-{}", std::process::id()));
+    let dir = temp_dir("includes-merge-children");
     std::fs::create_dir_all(dir.join("sub")).unwrap();
-    std::fs::write(
-        dir.join("sub/mats.xml"),
+    write_file(
+        &dir,
+        "sub/mats.xml",
         r#"<scene version="3.0.0"><bsdf type="diffuse" id="m"/></scene>"#,
-    )
-    .unwrap();
-    std::fs::write(
-        dir.join("main.xml"),
+    );
+    let main = write_file(
+        &dir,
+        "main.xml",
         r#"<scene version="3.0.0"><include filename="sub/mats.xml"/><shape type="sphere"><ref id="m"/></shape></scene>"#,
-    )
-    .unwrap();
-    let s = parse_file(&dir.join("main.xml"), &[]).unwrap();
+    );
+    let s = parse_file(&main, &[]).unwrap();
     assert_eq!(s.children.len(), 2);
     let b = &s.children[0].node;
     assert!(b.pos.file.ends_with("sub/mats.xml"));

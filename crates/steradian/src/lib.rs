@@ -36,6 +36,7 @@
 //! 11. `scene`: shapes, materials, lights and sensors with their BVH.
 //! 12. `integrator`: estimators of radiance and irradiance over a scene.
 //! 13. `render`: the render driver (a scene and its integrator in, films and readings out).
+//! 14. `testkit`: what tests share (built for tests and with the `testkit` feature only).
 
 pub mod accel;
 pub mod bsdf;
@@ -51,6 +52,8 @@ pub mod scene;
 pub mod sensor;
 pub mod shape;
 pub mod spectrum;
+#[cfg(any(test, feature = "testkit"))]
+pub mod testkit;
 pub mod texture;
 
 pub use glam::{Mat3, Mat4, Vec2, Vec3};

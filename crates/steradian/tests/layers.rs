@@ -222,8 +222,30 @@ fn find_cycle(graph: &BTreeMap<String, BTreeSet<String>>) -> Option<Vec<String>>
     None
 }
 
+/// Whether module `m` is declared only for tests (`#[cfg(test)] mod name;` in its parent's
+/// file): such files are test code, exempt like `#[cfg(test)]` items.
+fn test_only(m: &ModPath, mods: &BTreeMap<ModPath, PathBuf>) -> bool {
+    let Some((name, parent)) = m.split_last() else { return false };
+    let Some(text) = mods.get(parent).and_then(|f| fs::read_to_string(f).ok()) else {
+        return false;
+    };
+    text.match_indices("#[cfg(test)]").any(|(i, attr)| {
+        let rest = text[i + attr.len()..].trim_start();
+        let rest =
+            rest.strip_prefix("pub(crate)").or_else(|| rest.strip_prefix("pub")).unwrap_or(rest);
+        rest.trim_start().strip_prefix("mod").is_some_and(|r| {
+            r.trim_start()
+                .strip_prefix(name.as_str())
+                .is_some_and(|r| r.trim_start().starts_with(';'))
+        })
+    })
+}
+
 fn check_crate(src: &Path) {
-    let mods = modules(src);
+    let mut mods = modules(src);
+    let tests: Vec<ModPath> = mods.keys().filter(|m| test_only(m, &mods)).cloned().collect();
+    // a test-only module's own children are test code too
+    mods.retain(|m, _| !tests.iter().any(|t| m.starts_with(t)));
     let all: BTreeSet<ModPath> = mods.keys().cloned().collect();
     let lib = fs::read_to_string(src.join("lib.rs")).expect("lib.rs");
     let layer = layers(&lib);

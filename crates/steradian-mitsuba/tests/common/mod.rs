@@ -1,22 +1,67 @@
-//! Helpers shared by integration tests (`mod common;`).
+//! Helpers shared by the loader's integration tests (`mod common;`): where the test scenes
+//! are, how a load error must read, and the image mean of a small scene. Helpers that do not
+//! need the loader are in `steradian::testkit`.
 
-use std::path::Path;
+// Each test binary compiles this module and uses part of it.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
 
 use steradian::render::Job;
 use steradian::render::{render, RenderOptions};
 use steradian::sampling::SamplerKind;
+use steradian_mitsuba::LoadError;
+
+/// A scene of `tests/reference/` (the scenes with Mitsuba reference images), by file name.
+pub fn reference_scene(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/reference").join(name)
+}
+
+/// A scene of `scenes/validation/` (the closed-form radiometry cases), by file name.
+pub fn validation_scene(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../scenes/validation").join(name)
+}
+
+/// Every scene file of `tests/reference/` and `scenes/validation/`, sorted by path.
+pub fn all_scenes() -> Vec<PathBuf> {
+    let mut v: Vec<PathBuf> = [reference_scene(""), validation_scene("")]
+        .iter()
+        .flat_map(|dir| std::fs::read_dir(dir).unwrap_or_else(|e| panic!("{}: {e}", dir.display())))
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|e| e == "xml"))
+        .collect();
+    v.sort();
+    v
+}
+
+/// The error is at `file:line:col`, reads `file:line:col: error: message`, and its message
+/// contains every needle.
+#[track_caller]
+pub fn check_error(e: &LoadError, file: &Path, line: u32, col: u32, needles: &[&str]) {
+    let pos = e.pos.as_ref().unwrap_or_else(|| panic!("no position in: {e}"));
+    assert_eq!(*pos.file, file, "wrong file in: {e}");
+    assert_eq!((pos.line, pos.col), (line, col), "wrong position in: {e}");
+    for needle in needles {
+        assert!(
+            e.message.contains(needle),
+            "message {:?} does not contain {:?}",
+            e.message,
+            needle
+        );
+    }
+    let start = format!("{}:{line}:{col}: error: ", file.display());
+    assert!(e.to_string().starts_with(&start), "{e}");
+}
 
 /// The camera of the small integration-test scenes (`branches.rs`, `last_vertex.rs`): 60° from
 /// (0, 0, 4) towards the origin, a 24 × 24 film with a box filter, so each pixel's error comes
 /// from its own samples.
-#[allow(dead_code)] // not every test scene uses it
 pub const SENSOR: &str = r#"<sensor type="perspective"><float name="fov" value="60"/>
             <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
             <film type="hdrfilm"><integer name="width" value="24"/><integer name="height" value="24"/><rfilter type="box"/></film></sensor>"#;
 
 /// The red channel's image mean of scene `xml` (named `file` in errors) at 256 i.i.d. samples
 /// per pixel, and its standard error (see [`scene_mean_and_error`]).
-#[allow(dead_code)] // `last_vertex.rs` loads its scenes itself
 pub fn mean_and_error(xml: &str, file: &str, seed: u64) -> (f64, f64) {
     let s = steradian_mitsuba::load_string(xml, Path::new(file), Path::new("."), &[])
         .unwrap_or_else(|e| panic!("{e}"));

@@ -96,11 +96,11 @@ impl BlendBsdf {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::{
         Conductor, Diffuse, MicrofacetDistribution, MicrofacetKind, RoughConductor,
     };
     use super::*;
+    use crate::testkit::bsdf::*;
 
     fn diffuse(a: f32) -> Bsdf {
         Bsdf::Diffuse(Diffuse::new(Spectrum::new(a, 0.7 * a, 0.4 * a).into()))

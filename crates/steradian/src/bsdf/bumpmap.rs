@@ -92,9 +92,9 @@ impl BumpMap {
 #[cfg(test)]
 pub(crate) mod tests {
     use super::super::perturbed::shadow_terminator;
-    use super::super::testing::*;
     use super::super::{ior, Diffuse, MicrofacetDistribution, MicrofacetKind, RoughConductor};
     use super::*;
+    use crate::testkit::bsdf::*;
     use crate::texture::{Bitmap, FilterType, ImageFormat, LoadedImage, UvTransform, WrapMode};
 
     /// A 4×4 grey height field 0.1·((37 i) mod 11)/11 (bilinear, repeat, raw).
@@ -277,10 +277,10 @@ mod alpha_texture_tests {
     //! Roughness textures of `roughconductor` and `roughdielectric` (kept here, with the other
     //! texture-driven BSDF tests, to leave those files' own tests untouched).
 
-    use super::super::testing::*;
     use super::super::{MicrofacetDistribution, MicrofacetKind, RoughConductor, RoughDielectric};
     use super::tests::heights;
     use super::*;
+    use crate::testkit::bsdf::*;
 
     #[test]
     fn roughness_is_read_at_the_shading_point() {

@@ -69,9 +69,9 @@ impl Conductor {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::Bsdf;
     use super::*;
+    use crate::testkit::bsdf::*;
 
     #[test]
     fn mirror_is_lossless_and_gold_matches_fresnel() {

@@ -72,10 +72,10 @@ impl Dielectric {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::Bsdf;
     use super::*;
     use crate::sampling::Pcg32;
+    use crate::testkit::bsdf::*;
 
     fn glass() -> Bsdf {
         Bsdf::Dielectric(Dielectric::new(

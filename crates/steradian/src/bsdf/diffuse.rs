@@ -69,9 +69,9 @@ impl Diffuse {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::Bsdf;
     use super::*;
+    use crate::testkit::bsdf::*;
 
     fn bsdf(a: f32) -> Bsdf {
         Bsdf::Diffuse(Diffuse::new(Spectrum::new(a, 0.5 * a, 0.25 * a).into()))

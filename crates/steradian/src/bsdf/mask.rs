@@ -92,10 +92,10 @@ impl Mask {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::{Diffuse, MicrofacetDistribution, MicrofacetKind, RoughConductor, TwoSided};
     use super::*;
     use crate::sampling::Pcg32;
+    use crate::testkit::bsdf::*;
 
     fn rough() -> Bsdf {
         let d = MicrofacetDistribution::new(MicrofacetKind::Ggx, 0.3, 0.3, true);

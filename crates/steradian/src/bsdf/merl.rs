@@ -428,10 +428,10 @@ impl Merl {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::{Bsdf, Phong};
     use super::*;
     use crate::sampling::Pcg32;
+    use crate::testkit::bsdf::*;
 
     fn phong() -> Bsdf {
         Bsdf::Phong(

@@ -309,19 +309,11 @@ mod tests {
     use std::f64::consts::PI as PI64;
 
     use super::*;
-    use crate::bsdf::testing::dir;
     use crate::sampling::Pcg32;
+    use crate::testkit::bsdf::{dir, microfacet_grid};
 
     fn all() -> Vec<MicrofacetDistribution> {
-        let mut v = vec![];
-        for kind in [MicrofacetKind::Beckmann, MicrofacetKind::Ggx] {
-            for (au, av) in [(0.05, 0.05), (0.3, 0.3), (0.7, 0.7), (0.1, 0.5), (0.6, 0.15)] {
-                for vis in [false, true] {
-                    v.push(MicrofacetDistribution::new(kind, au, av, vis));
-                }
-            }
-        }
-        v
+        microfacet_grid(&[(0.05, 0.05), (0.3, 0.3), (0.7, 0.7), (0.1, 0.5), (0.6, 0.15)])
     }
 
     /// ∫ f(m) dωm over the upper hemisphere, midpoint rule in (cos θ, φ) with extra

@@ -63,9 +63,9 @@ impl NormalMap {
 #[cfg(test)]
 mod tests {
     use super::super::bumpmap::tests::{copper, copper_with};
-    use super::super::testing::*;
     use super::super::{Diffuse, MicrofacetKind};
     use super::*;
+    use crate::testkit::bsdf::*;
 
     fn nmap(c: Vec3, nested: Bsdf) -> Bsdf {
         Bsdf::NormalMap(NormalMap::new(

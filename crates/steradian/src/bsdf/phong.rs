@@ -174,9 +174,9 @@ impl Phong {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::Bsdf;
     use super::*;
+    use crate::testkit::bsdf::*;
 
     fn phong(rd: Spectrum, rs: Spectrum, n: f32) -> Bsdf {
         Bsdf::Phong(Phong::new(rd.into(), rs.into(), n).unwrap())

@@ -173,9 +173,9 @@ impl Plastic {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::Bsdf;
     use super::*;
+    use crate::testkit::bsdf::*;
 
     fn plastic(a: f32, internal: InternalScattering) -> Bsdf {
         Bsdf::Plastic(Plastic::new(

@@ -125,21 +125,12 @@ impl RoughConductor {
 
 #[cfg(test)]
 mod tests {
-    use super::super::microfacet::MicrofacetKind;
-    use super::super::testing::*;
     use super::super::Bsdf;
     use super::*;
+    use crate::testkit::bsdf::*;
 
     fn configs() -> Vec<MicrofacetDistribution> {
-        let mut v = vec![];
-        for kind in [MicrofacetKind::Beckmann, MicrofacetKind::Ggx] {
-            for vis in [true, false] {
-                for (au, av) in [(0.05, 0.05), (0.3, 0.3), (0.7, 0.7), (0.1, 0.4)] {
-                    v.push(MicrofacetDistribution::new(kind, au, av, vis));
-                }
-            }
-        }
-        v
+        microfacet_grid(&ALPHAS)
     }
 
     fn gold(d: MicrofacetDistribution) -> Bsdf {
@@ -156,31 +147,9 @@ mod tests {
         ))
     }
 
-    /// Quadrature resolution for the expected counts: sharp lobes need more.
-    fn sub(d: &MicrofacetDistribution) -> usize {
-        if d.alpha_u.min(d.alpha_v) < 0.1 {
-            40
-        } else {
-            12
-        }
-    }
-
     #[test]
     fn sampling_matches_pdf_chi2() {
-        let cfg = configs();
-        let tests = cfg.len() * 4;
-        for (i, d) in cfg.into_iter().enumerate() {
-            for (j, theta) in [0.0, 30.0, 60.0, 80.0].into_iter().enumerate() {
-                let p = chi2_pvalue_sub(
-                    &gold(d),
-                    dir(theta, 35.0),
-                    200_000,
-                    (i * 10 + j) as u64,
-                    sub(&d),
-                );
-                assert!(p > 0.01 / tests as f64, "{d:?} θ={theta}: p-value {p}");
-            }
-        }
+        assert_chi2_over_grid(&configs(), &[0.0, 30.0, 60.0, 80.0], gold);
     }
 
     #[test]

@@ -191,21 +191,12 @@ impl RoughDielectric {
 
 #[cfg(test)]
 mod tests {
-    use super::super::microfacet::MicrofacetKind;
-    use super::super::testing::*;
     use super::super::Bsdf;
     use super::*;
+    use crate::testkit::bsdf::*;
 
     fn configs() -> Vec<MicrofacetDistribution> {
-        let mut v = vec![];
-        for kind in [MicrofacetKind::Beckmann, MicrofacetKind::Ggx] {
-            for vis in [true, false] {
-                for (au, av) in [(0.05, 0.05), (0.3, 0.3), (0.7, 0.7), (0.1, 0.4)] {
-                    v.push(MicrofacetDistribution::new(kind, au, av, vis));
-                }
-            }
-        }
-        v
+        microfacet_grid(&ALPHAS)
     }
 
     const ETA: f32 = 1.5046 / 1.000277;
@@ -227,15 +218,6 @@ mod tests {
         w
     }
 
-    /// Quadrature resolution for the expected counts: sharp lobes need more.
-    fn sub(d: &MicrofacetDistribution) -> usize {
-        if d.alpha_u.min(d.alpha_v) < 0.1 {
-            40
-        } else {
-            12
-        }
-    }
-
     #[test]
     fn sampling_matches_pdf_chi2() {
         let cfg = configs();
@@ -248,7 +230,7 @@ mod tests {
                         wo_at(theta, inside),
                         200_000,
                         (i * 100 + j * 2 + inside as usize) as u64,
-                        sub(&d),
+                        chi2_sub(&d),
                     );
                     assert!(
                         p > 0.01 / tests as f64,

@@ -241,20 +241,12 @@ fn coating_transmittance(distr: &MicrofacetDistribution, wo: Vec3, eta: f32) -> 
 #[cfg(test)]
 mod tests {
     use super::super::microfacet::MicrofacetKind;
-    use super::super::testing::*;
     use super::super::Bsdf;
     use super::*;
+    use crate::testkit::bsdf::*;
 
     fn configs() -> Vec<MicrofacetDistribution> {
-        let mut v = vec![];
-        for kind in [MicrofacetKind::Beckmann, MicrofacetKind::Ggx] {
-            for vis in [true, false] {
-                for alpha in [0.05, 0.1, 0.3, 0.7] {
-                    v.push(MicrofacetDistribution::new(kind, alpha, alpha, vis));
-                }
-            }
-        }
-        v
+        microfacet_grid(&[(0.05, 0.05), (0.1, 0.1), (0.3, 0.3), (0.7, 0.7)])
     }
 
     fn plastic(d: MicrofacetDistribution, a: Spectrum) -> Bsdf {
@@ -269,16 +261,9 @@ mod tests {
 
     #[test]
     fn sampling_matches_pdf_chi2() {
-        let cfg = configs();
-        let tests = cfg.len() * 3;
-        for (i, d) in cfg.into_iter().enumerate() {
-            for (j, theta) in [0.0, 45.0, 80.0].into_iter().enumerate() {
-                let sub = if d.alpha_u < 0.1 { 40 } else { 12 };
-                let b = plastic(d, Spectrum::new(0.1, 0.25, 0.7));
-                let p = chi2_pvalue_sub(&b, dir(theta, 35.0), 200_000, (i * 10 + j) as u64, sub);
-                assert!(p > 0.01 / tests as f64, "{d:?} θ={theta}: p-value {p}");
-            }
-        }
+        assert_chi2_over_grid(&configs(), &[0.0, 45.0, 80.0], |d| {
+            plastic(d, Spectrum::new(0.1, 0.25, 0.7))
+        });
     }
 
     #[test]

@@ -64,10 +64,10 @@ impl ThinDielectric {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::Bsdf;
     use super::*;
     use crate::sampling::Pcg32;
+    use crate::testkit::bsdf::*;
 
     #[test]
     fn lossless_with_interreflection_split() {

@@ -66,9 +66,9 @@ impl TwoSided {
 
 #[cfg(test)]
 mod tests {
-    use super::super::testing::*;
     use super::super::Diffuse;
     use super::*;
+    use crate::testkit::bsdf::*;
 
     #[test]
     fn back_face_reflects_with_the_back_bsdf() {

@@ -143,3 +143,6 @@ impl Emitter {
         }
     }
 }
+
+#[cfg(test)]
+mod tests;

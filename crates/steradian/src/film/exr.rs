@@ -100,12 +100,7 @@ pub fn read_exr(path: &Path) -> Result<Image, String> {
 mod tests {
     use super::*;
     use crate::sampling::Pcg32;
-
-    fn tmp(name: &str) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!("steradian-film-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        dir.join(name)
-    }
+    use crate::testkit::temp_dir;
 
     fn random_image(w: u32, h: u32, seed: u64) -> Image {
         let mut rng = Pcg32::new(seed, 7);
@@ -118,8 +113,9 @@ mod tests {
 
     #[test]
     fn exr_round_trip_f32_exact() {
+        let dir = temp_dir("film-exr-exr-round-trip-f32-exact");
         let img = random_image(13, 7, 1);
-        let p = tmp("rt.exr");
+        let p = dir.join("rt.exr");
         write_exr(&p, &img).unwrap();
         let back = read_exr(&p).unwrap();
         assert_eq!(back.width, 13);
@@ -130,8 +126,9 @@ mod tests {
 
     #[test]
     fn exr_f16_round_trip_within_half_precision() {
+        let dir = temp_dir("film-exr-exr-f16-round-trip-within-half-precision");
         let img = random_image(5, 4, 2);
-        let p = tmp("rt16.exr");
+        let p = dir.join("rt16.exr");
         write_exr_layers_as(&p, &[("", &img)], ComponentFormat::Float16).unwrap();
         let back = read_exr(&p).unwrap();
         for (a, b) in back.data.iter().zip(&img.data) {
@@ -143,9 +140,10 @@ mod tests {
 
     #[test]
     fn exr_layers_readable() {
+        let dir = temp_dir("film-exr-exr-layers-readable");
         let main = random_image(6, 5, 3);
         let err = random_image(6, 5, 4);
-        let p = tmp("layers.exr");
+        let p = dir.join("layers.exr");
         write_exr_layers(&p, &[("", &main), ("stderr", &err)]).unwrap();
         // The main RGB is read back.
         assert_eq!(read_exr(&p).unwrap().data, main.data);
@@ -168,21 +166,22 @@ mod tests {
 
     #[test]
     fn exr_read_errors() {
-        let missing = tmp("does-not-exist.exr");
+        let dir = temp_dir("film-exr-exr-read-errors");
+        let missing = dir.join("does-not-exist.exr");
         let e = read_exr(&missing).unwrap_err();
         assert!(e.contains("does-not-exist.exr"), "{e}");
-        let corrupt = tmp("corrupt.exr");
+        let corrupt = dir.join("corrupt.exr");
         std::fs::write(&corrupt, b"this is not an OpenEXR file at all").unwrap();
         let e = read_exr(&corrupt).unwrap_err();
         assert!(e.contains("corrupt.exr"), "{e}");
         // Truncated valid file.
-        let p = tmp("trunc.exr");
+        let p = dir.join("trunc.exr");
         write_exr(&p, &random_image(16, 16, 5)).unwrap();
         let bytes = std::fs::read(&p).unwrap();
         std::fs::write(&p, &bytes[..bytes.len() / 2]).unwrap();
         assert!(read_exr(&p).is_err());
         // A file without R, G, B.
-        let q = tmp("noRGB.exr");
+        let q = dir.join("noRGB.exr");
         let img = ExrImage::from_channels(
             (2usize, 2usize),
             AnyChannels::sort(SmallVec::from_vec(vec![AnyChannel::new(

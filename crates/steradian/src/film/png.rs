@@ -93,13 +93,8 @@ pub fn read_png_rgb8(path: &Path) -> Result<(u32, u32, Vec<u8>), String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::testkit::temp_dir;
     use crate::Spectrum;
-
-    fn tmp(name: &str) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!("steradian-film-png-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        dir.join(name)
-    }
 
     #[test]
     fn srgb_known_values() {
@@ -125,11 +120,12 @@ mod tests {
 
     #[test]
     fn png_round_trip() {
+        let dir = temp_dir("film-png-png-round-trip");
         let mut img = Image::new(3, 2);
         img.set(0, 0, Spectrum::new(0.0, 0.5, 1.0));
         img.set(1, 0, Spectrum::new(0.25, 0.25, 0.25));
         img.set(2, 1, Spectrum::new(2.0, -1.0, 0.1));
-        let p = tmp("rt.png");
+        let p = dir.join("rt.png");
         write_png(&p, &img, 2.0).unwrap();
         let (w, h, data) = read_png_rgb8(&p).unwrap();
         assert_eq!((w, h), (3, 2));
@@ -139,10 +135,10 @@ mod tests {
         assert_eq!(&data[0..6], &[0, 255, 255, 188, 188, 188]);
         // In-memory encoder gives a decodable PNG too.
         let bytes = encode_png_rgb8(3, 2, &want);
-        let q = tmp("mem.png");
+        let q = dir.join("mem.png");
         std::fs::write(&q, bytes).unwrap();
         assert_eq!(read_png_rgb8(&q).unwrap().2, want);
-        assert!(read_png_rgb8(&tmp("missing.png")).unwrap_err().contains("missing.png"));
+        assert!(read_png_rgb8(&dir.join("missing.png")).unwrap_err().contains("missing.png"));
         std::fs::remove_file(p).ok();
         std::fs::remove_file(q).ok();
     }

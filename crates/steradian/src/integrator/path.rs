@@ -441,3 +441,6 @@ impl PathTracer {
         Some(st)
     }
 }
+
+#[cfg(test)]
+mod tests;

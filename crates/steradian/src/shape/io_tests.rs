@@ -1,19 +1,10 @@
 //! OBJ and PLY reader tests (files written into a temporary directory).
 
-use std::path::PathBuf;
-
 use glam::{Vec2, Vec3};
 
 use super::*;
 use crate::geometry::Transform;
-
-fn temp_file(name: &str, bytes: &[u8]) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("steradian-shape-tests-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    let p = dir.join(name);
-    std::fs::write(&p, bytes).unwrap();
-    p
-}
+use crate::testkit::{temp_dir, write_file};
 
 /// Every triangle corner of `d` maps a position to the expected uv.
 fn corner_uvs(d: &MeshData) -> Vec<(Vec3, Vec2)> {
@@ -23,13 +14,14 @@ fn corner_uvs(d: &MeshData) -> Vec<(Vec3, Vec2)> {
 
 #[test]
 fn obj_quads_with_per_corner_uvs_and_normals() {
+    let dir = temp_dir("shape-obj-quads-with-per-corner-uvs-and-normals");
     let src = "# quad split across two faces with different uvs at shared positions\n\
         v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n\
         vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.25\n\
         vn 0 0 1\n\
         f 1/1/1 2/2/1 3/3/1\n\
         f 1/5/1 3/3/1 4/4/1\n";
-    let p = temp_file("corners.obj", src.as_bytes());
+    let p = write_file(&dir, "corners.obj", src.as_bytes());
     let d = read_obj(&p, false).unwrap();
     assert_eq!(d.indices.len(), 2);
     assert!(d.normals.as_ref().unwrap().iter().all(|&n| n == Vec3::Z));
@@ -49,7 +41,7 @@ fn obj_quads_with_per_corner_uvs_and_normals() {
 
     // a quad face (triangulated), no normals: smooth normals are computed by Mesh
     let src = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
-    let d = read_obj(&temp_file("quad.obj", src.as_bytes()), true).unwrap();
+    let d = read_obj(&write_file(&dir, "quad.obj", src.as_bytes()), true).unwrap();
     assert_eq!(d.indices.len(), 2);
     assert!(d.normals.is_none() && d.uvs.is_none());
     let m = Mesh::from_data(d, &Transform::translate(Vec3::Z), false, false).unwrap();
@@ -60,19 +52,24 @@ fn obj_quads_with_per_corner_uvs_and_normals() {
 
 #[test]
 fn obj_errors() {
-    let missing = std::env::temp_dir().join("steradian-definitely-missing.obj");
+    let dir = temp_dir("shape-obj-errors");
+    let missing = dir.join("missing.obj");
     let e = read_obj(&missing, true).unwrap_err();
     assert!(e.to_string().contains("cannot open"), "{e}");
     let garbage: Vec<u8> =
         (0..4096u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
-    assert!(read_obj(&temp_file("garbage.obj", &garbage), true).is_err());
-    assert!(read_obj(&temp_file("empty.obj", b"# nothing\nv 0 0 0\n"), true).is_err());
-    assert!(
-        read_obj(&temp_file("range.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), true).is_err()
-    );
-    assert!(
-        read_obj(&temp_file("bad.obj", b"v 0 0 zero\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), true).is_err()
-    );
+    assert!(read_obj(&write_file(&dir, "garbage.obj", &garbage), true).is_err());
+    assert!(read_obj(&write_file(&dir, "empty.obj", b"# nothing\nv 0 0 0\n"), true).is_err());
+    assert!(read_obj(
+        &write_file(&dir, "range.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
+        true
+    )
+    .is_err());
+    assert!(read_obj(
+        &write_file(&dir, "bad.obj", b"v 0 0 zero\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
+        true
+    )
+    .is_err());
 }
 
 const TET_ASCII: &str = "ply\nformat ascii 1.0\ncomment test\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n\
@@ -81,7 +78,8 @@ property float s\nproperty float t\nelement face 2\nproperty list uchar int vert
 
 #[test]
 fn ply_ascii_with_polygons() {
-    let d = read_ply(&temp_file("a.ply", TET_ASCII.as_bytes())).unwrap();
+    let dir = temp_dir("shape-ply-ascii-with-polygons");
+    let d = read_ply(&write_file(&dir, "a.ply", TET_ASCII.as_bytes())).unwrap();
     assert_eq!(d.positions.len(), 5);
     assert_eq!(d.indices, vec![[0, 1, 2], [0, 2, 3], [0, 1, 4]]);
     assert!(d.normals.is_none());
@@ -128,8 +126,9 @@ element face 1\nproperty list uchar uint vertex_index\nend_header\n"
 
 #[test]
 fn ply_binary_with_normals_and_uvs() {
+    let dir = temp_dir("shape-ply-binary-with-normals-and-uvs");
     for be in [false, true] {
-        let d = read_ply(&temp_file(&format!("b{be}.ply"), &binary_ply(be))).unwrap();
+        let d = read_ply(&write_file(&dir, &format!("b{be}.ply"), binary_ply(be))).unwrap();
         assert_eq!(
             d.positions,
             vec![Vec3::new(0.0, 0.0, 2.0), Vec3::new(3.0, 0.0, 2.0), Vec3::new(0.0, 3.0, 2.0)]
@@ -144,26 +143,27 @@ fn ply_binary_with_normals_and_uvs() {
 
 #[test]
 fn ply_errors_never_panic() {
-    let missing = std::env::temp_dir().join("steradian-definitely-missing.ply");
+    let dir = temp_dir("shape-ply-errors-never-panic");
+    let missing = dir.join("missing.ply");
     assert!(read_ply(&missing).unwrap_err().to_string().contains("cannot open"));
     let full = binary_ply(false);
     // truncated at every length after the header and inside it
     for cut in [1usize, 10, 60, full.len() - 40, full.len() - 5, full.len() - 1] {
-        assert!(read_ply(&temp_file("trunc.ply", &full[..cut])).is_err(), "cut at {cut}");
+        assert!(read_ply(&write_file(&dir, "trunc.ply", &full[..cut])).is_err(), "cut at {cut}");
     }
     let garbage: Vec<u8> =
         (0..4096u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
-    assert!(read_ply(&temp_file("garbage.ply", &garbage)).is_err());
+    assert!(read_ply(&write_file(&dir, "garbage.ply", &garbage)).is_err());
     let mut g2 = b"ply\nformat binary_little_endian 1.0\nelement vertex 1000000\nproperty float x\nproperty float y\nproperty float z\nelement face 5\nproperty list uchar int vertex_indices\nend_header\n".to_vec();
     g2.extend_from_slice(&garbage);
-    assert!(read_ply(&temp_file("garbage2.ply", &g2)).is_err());
+    assert!(read_ply(&write_file(&dir, "garbage2.ply", &g2)).is_err());
     let range = TET_ASCII.replace("3 0 1 4", "3 0 1 9");
-    let e = read_ply(&temp_file("range.ply", range.as_bytes())).unwrap_err();
+    let e = read_ply(&write_file(&dir, "range.ply", range.as_bytes())).unwrap_err();
     assert!(e.to_string().contains("vertex 9"), "{e}");
     let neg = TET_ASCII.replace("3 0 1 4", "3 0 1 -4");
-    assert!(read_ply(&temp_file("neg.ply", neg.as_bytes())).is_err());
+    assert!(read_ply(&write_file(&dir, "neg.ply", neg.as_bytes())).is_err());
     let noz = TET_ASCII.replace("property float z\n", "");
-    assert!(read_ply(&temp_file("noz.ply", noz.as_bytes())).is_err());
+    assert!(read_ply(&write_file(&dir, "noz.ply", noz.as_bytes())).is_err());
     let nofaces = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n";
-    assert!(read_ply(&temp_file("nofaces.ply", nofaces.as_bytes())).is_err());
+    assert!(read_ply(&write_file(&dir, "nofaces.ply", nofaces.as_bytes())).is_err());
 }

@@ -1,14 +1,11 @@
 //! Shared checks for the shape tests.
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 use super::Shape;
 use crate::geometry::Ray;
 use crate::sampling::Pcg32;
-
-pub fn u2(r: &mut Pcg32) -> Vec2 {
-    Vec2::new(r.next_f32(), r.next_f32())
-}
+use crate::testkit::u2;
 
 pub fn close(a: Vec3, b: Vec3, tol: f32) -> bool {
     (a - b).length() <= tol

@@ -544,7 +544,7 @@ fn mesh_validation_and_degenerate_triangles() {
         let u = if i < 4 {
             Vec2::new([0.0, 0.5, 0.999_999_9, 1.0 - f32::EPSILON][i], 0.3)
         } else {
-            super::test_util::u2(&mut rng)
+            crate::testkit::u2(&mut rng)
         };
         let ps = m.sample_position(u);
         assert!(

@@ -136,12 +136,7 @@ fn drop_alpha(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    fn tmp(name: &str) -> std::path::PathBuf {
-        let dir = std::env::temp_dir().join(format!("steradian-texture-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        dir.join(name)
-    }
+    use crate::testkit::temp_dir;
 
     fn write_png(
         path: &Path,
@@ -160,7 +155,8 @@ mod tests {
 
     #[test]
     fn png_variants_and_alpha() {
-        let p = tmp("rgba.png");
+        let dir = temp_dir("texture-image-png-variants-and-alpha");
+        let p = dir.join("rgba.png");
         write_png(
             &p,
             2,
@@ -172,7 +168,7 @@ mod tests {
         let img = read_image(&p).unwrap();
         assert_eq!((img.width, img.height, img.channels, img.format), (2, 1, 3, ImageFormat::Png));
         assert_eq!(img.data, vec![1.0, 0.0, 0.2, 0.0, 0.4, 0.0]);
-        let p = tmp("grey16.png");
+        let p = dir.join("grey16.png");
         write_png(
             &p,
             1,
@@ -188,16 +184,17 @@ mod tests {
 
     #[test]
     fn errors_name_the_file() {
-        let e = read_image(&tmp("missing.png")).unwrap_err();
+        let dir = temp_dir("texture-image-errors-name-the-file");
+        let e = read_image(&dir.join("missing.png")).unwrap_err();
         assert!(e.contains("missing.png"), "{e}");
-        let p = tmp("corrupt.png");
+        let p = dir.join("corrupt.png");
         std::fs::write(&p, [0x89, b'P', b'N', b'G', 1, 2, 3]).unwrap();
         let e = read_image(&p).unwrap_err();
         assert!(e.contains("corrupt.png"), "{e}");
-        let p = tmp("corrupt.jpg");
+        let p = dir.join("corrupt.jpg");
         std::fs::write(&p, [0xFF, 0xD8, 0xFF, 0x00, 9, 9]).unwrap();
         assert!(read_image(&p).unwrap_err().contains("corrupt.jpg"));
-        let p = tmp("text.png");
+        let p = dir.join("text.png");
         std::fs::write(&p, "hello").unwrap();
         assert!(read_image(&p).unwrap_err().contains("not a PNG, JPEG or OpenEXR"));
     }

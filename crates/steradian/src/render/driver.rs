@@ -99,3 +99,105 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         interrupted: spp_done < spp,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use std::sync::atomic::AtomicBool;
+
+    use glam::Vec3;
+
+    use super::*;
+    use crate::film::{Film, GaussianFilter};
+    use crate::geometry::Transform;
+    use crate::integrator::PathTracer;
+    use crate::sampling::{Sampler, SamplerKind};
+    use crate::sensor::{Perspective, Sensor, SensorKind};
+    use crate::testkit::scenes::lit_plane;
+    use crate::Spectrum;
+
+    /// The testkit's lit plane seen from above by a 24×16 camera (Gaussian filter: samples
+    /// splat into neighbouring tiles, so merge order matters to the sums).
+    fn job(branches: Branches) -> Job {
+        let tracer = PathTracer { branches, ..PathTracer::default() };
+        let mut job = lit_plane(Spectrum::splat(0.5), Spectrum::splat(3.0), Vec3::Z, 4.0, tracer);
+        let to_world = Transform::look_at(Vec3::new(0.0, -1.0, 3.0), Vec3::ZERO, Vec3::Y)
+            .expect("a valid camera frame");
+        let camera = Perspective::new(to_world, 0.8, 1.5, 0.01, 100.0).expect("valid camera");
+        job.scene.sensors.push(Sensor {
+            kind: SensorKind::Perspective(camera),
+            film: Film::new(24, 16, GaussianFilter::default().into()).expect("valid film"),
+            sampler: Sampler { kind: SamplerKind::Sobol, sample_count: 9, seed: 4 },
+            id: "camera".into(),
+        });
+        job
+    }
+
+    fn bits(out: &RenderOutput) -> Vec<u32> {
+        out.image().data.iter().chain(&out.stderr_image().data).map(|v| v.to_bits()).collect()
+    }
+
+    #[test]
+    fn the_image_is_the_same_for_any_thread_count() {
+        let job = job(Branches::Fixed(2));
+        let render_with = |threads| {
+            render(&job, &RenderOptions { threads: Some(threads), ..Default::default() })
+                .expect("renders")
+        };
+        let one = render_with(1);
+        assert_eq!((one.spp, one.dropped_samples, one.interrupted), (9, 0, false));
+        assert!(one.image().data.iter().any(|&v| v > 0.0), "the plane is lit");
+        for threads in [2, 3, 5] {
+            assert_eq!(bits(&render_with(threads)), bits(&one), "{threads} threads");
+        }
+    }
+
+    #[test]
+    fn a_cancel_keeps_only_complete_passes() {
+        let job = job(Branches::Fixed(1));
+        let cancel = AtomicBool::new(false);
+        // cancel as soon as the first item is done: passes of 1, 2, … samples, so the film
+        // holds 0 or 1 sample per pixel (the first pass) whatever the threads did meanwhile
+        let stop = |_: Progress| cancel.store(true, Ordering::Relaxed);
+        let opts = RenderOptions {
+            spp: Some(64),
+            threads: Some(2),
+            cancel: Some(&cancel),
+            progress: Some(&stop),
+            ..Default::default()
+        };
+        let out = render(&job, &opts).expect("renders");
+        assert!(out.interrupted && out.spp <= 1, "spp {}", out.spp);
+        // what it holds is the uninterrupted render's first pass, bit for bit
+        if out.spp == 1 {
+            let first = render(&job, &RenderOptions { spp: Some(1), ..Default::default() });
+            assert_eq!(out.image().data, first.expect("renders").image().data);
+        }
+    }
+
+    #[test]
+    fn options_are_checked_against_the_scene() {
+        let job = job(Branches::Auto);
+        let err = |opts: RenderOptions| render(&job, &opts).expect_err("an invalid option");
+        assert_eq!(
+            err(RenderOptions { spp: Some(0), ..Default::default() }),
+            RenderError::BadOption { option: "spp", reason: "must be at least 1" }
+        );
+        assert_eq!(
+            err(RenderOptions { threads: Some(0), ..Default::default() }),
+            RenderError::BadOption { option: "threads", reason: "must be at least 1" }
+        );
+        assert_eq!(
+            err(RenderOptions { sensor: Some(1), ..Default::default() }),
+            RenderError::BadSensor(1)
+        );
+        // the pilot chooses a branch count (at 400 spp its work fits in its budget); a surface
+        // map uses the default count, without a pilot
+        let out = render(&job, &RenderOptions { spp: Some(400), ..Default::default() });
+        let out = out.expect("renders");
+        assert!(out.pilot.is_some() && out.branches == out.pilot.map(|p| p.branches));
+        let map =
+            RenderOptions { quantity: PixelQuantity::SurfaceIrradiance, ..Default::default() };
+        let out = render(&job, &map).expect("renders");
+        assert_eq!((out.pilot, out.branches), (None, Some(DEFAULT_BRANCHES)));
+    }
+}

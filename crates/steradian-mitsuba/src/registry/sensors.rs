@@ -1,4 +1,4 @@
-//! Sensor plugins (`perspective`, `thinlens`) with their film (`hdrfilm`), reconstruction
+//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, meters) with their film (`hdrfilm`), reconstruction
 //! filter (`box`, `tent`, `gaussian`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`).
 
@@ -7,14 +7,16 @@ use steradian::film::{
 };
 use steradian::sampling::{Sampler, SamplerKind};
 use steradian::sensor::{
-    FieldOfView, FovAxis, IrradianceMeter, Perspective, RadianceMeter, Sensor, SensorKind, ThinLens,
+    FieldOfView, FovAxis, IrradianceMeter, Orthographic, Perspective, RadianceMeter, Sensor,
+    SensorKind, ThinLens,
 };
 
 use super::{at, at_property, unknown_type};
 use crate::error::LoadError;
 use crate::xml::{ObjectTag, PluginNode};
 
-const KNOWN: &[&str] = &["perspective", "thinlens", "radiancemeter", "irradiancemeter"];
+const KNOWN: &[&str] =
+    &["perspective", "thinlens", "orthographic", "radiancemeter", "irradiancemeter"];
 
 fn single_child(node: &PluginNode, tag: ObjectTag) -> Result<Option<&PluginNode>, LoadError> {
     let c = node.children_of(tag);
@@ -250,6 +252,11 @@ pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, Loa
             node.check_all_used()?;
             return Ok(Sensor { kind: SensorKind::RadianceMeter(meter), film, sampler, id });
         }
+        ("orthographic", None) => {
+            let kind = SensorKind::Orthographic(orthographic(node, &film)?);
+            node.check_all_used()?;
+            return Ok(Sensor { kind, film, sampler, id });
+        }
         _ => {}
     }
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
@@ -315,4 +322,16 @@ pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, Loa
     };
     node.check_all_used()?;
     Ok(Sensor { kind, film, sampler, id })
+}
+
+/// `orthographic` (core: sensor/orthographic.rs): no field of view; `to_world` may scale.
+fn orthographic(node: &PluginNode, film: &Film) -> Result<Orthographic, LoadError> {
+    use steradian::sensor::orthographic::{DEFAULT_FAR_CLIP, DEFAULT_NEAR_CLIP};
+    let p = &node.props;
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let near = p.get_float("near_clip")?.unwrap_or(DEFAULT_NEAR_CLIP);
+    let far = p.get_float("far_clip")?.unwrap_or(DEFAULT_FAR_CLIP);
+    let aspect = film.width as f32 / film.height as f32;
+    Orthographic::new(to_world, aspect, near, far)
+        .map_err(at_property(node, &["to_world", "near_clip", "far_clip"]))
 }

@@ -77,10 +77,10 @@ fn unknown_emitter_type() {
 #[test]
 fn unknown_sensor_type() {
     check(
-        &err(&scene("<sensor type=\"orthographic\"/>")),
+        &err(&scene("<sensor type=\"batch\"/>")),
         2,
         1,
-        &["unknown sensor plugin type 'orthographic'", "perspective"],
+        &["unknown sensor plugin type 'batch'", "perspective"],
     );
 }
 

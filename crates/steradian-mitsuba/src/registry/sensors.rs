@@ -1,4 +1,4 @@
-//! Sensor plugins (`perspective`, `thinlens`) with their film (`hdrfilm`), reconstruction
+//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, meters) with their film (`hdrfilm`), reconstruction
 //! filter (`box`, `tent`, `gaussian`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`).
 
@@ -8,7 +8,8 @@ use steradian::film::{
 use steradian::geometry::Transform;
 use steradian::sampling::{Sampler, SamplerKind};
 use steradian::sensor::{
-    FieldOfView, FovAxis, IrradianceMeter, Perspective, RadianceMeter, Sensor, SensorKind, ThinLens,
+    FieldOfView, FovAxis, IrradianceMeter, Orthographic, Perspective, RadianceMeter, Sensor,
+    SensorKind, ThinLens,
 };
 
 use super::{at, at_param, lookup, Plugins};
@@ -204,6 +205,7 @@ type BuildSensor = fn(&PluginNode, &Film, Option<u32>) -> Result<SensorKind, Loa
 pub(super) const SENSORS: &Plugins<BuildSensor> = &[
     ("perspective", perspective),
     ("thinlens", thinlens),
+    ("orthographic", orthographic_sensor),
     ("radiancemeter", radiancemeter),
     ("irradiancemeter", irradiancemeter),
 ];
@@ -386,4 +388,24 @@ fn thinlens(node: &PluginNode, film: &Film, shape: Option<u32>) -> Result<Sensor
     )
     .map_err(at_param(node))?;
     Ok(SensorKind::ThinLens(camera))
+}
+
+fn orthographic_sensor(
+    node: &PluginNode,
+    film: &Film,
+    shape: Option<u32>,
+) -> Result<SensorKind, LoadError> {
+    not_in_shape(node, shape)?;
+    Ok(SensorKind::Orthographic(orthographic(node, film)?))
+}
+
+/// `orthographic` (core: sensor/orthographic.rs): no field of view; `to_world` may scale.
+fn orthographic(node: &PluginNode, film: &Film) -> Result<Orthographic, LoadError> {
+    use steradian::sensor::orthographic::{DEFAULT_FAR_CLIP, DEFAULT_NEAR_CLIP};
+    let p = &node.props;
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let near = p.get_float("near_clip")?.unwrap_or(DEFAULT_NEAR_CLIP);
+    let far = p.get_float("far_clip")?.unwrap_or(DEFAULT_FAR_CLIP);
+    let aspect = film.width as f32 / film.height as f32;
+    Orthographic::new(to_world, aspect, near, far).map_err(at_param(node))
 }

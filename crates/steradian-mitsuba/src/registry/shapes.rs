@@ -1,4 +1,4 @@
-//! Shape plugins: `obj`, `ply`, `rectangle`, `disk`, `cube`, `sphere`, `cylinder`, with
+//! Shape plugins: `obj`, `ply`, `serialized`, `rectangle`, `disk`, `cube`, `sphere`, `cylinder`, with
 //! their BSDF and area emitter.
 
 use std::path::PathBuf;
@@ -31,6 +31,7 @@ type BuildShape = fn(&ShapeArgs) -> Result<Shape, LoadError>;
 pub(super) const SHAPES: &Plugins<BuildShape> = &[
     ("obj", obj),
     ("ply", ply),
+    ("serialized", serialized_shape),
     ("rectangle", rectangle),
     ("disk", disk),
     ("cube", cube),
@@ -177,4 +178,44 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
         .shapes
         .push((shape, ShapeBinding { bsdf, emitter, id: node.id.clone().unwrap_or_default() }));
     Ok(())
+}
+
+/// `serialized`: one shape of a Mitsuba `.serialized` file (core: shape/serialized.rs).
+fn serialized_shape(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Mesh(serialized(s.b, s.node, &s.to_world, s.flip)?))
+}
+
+fn serialized(
+    b: &Builder,
+    node: &PluginNode,
+    to_world: &steradian::geometry::Transform,
+    flip_normals: bool,
+) -> Result<Mesh, LoadError> {
+    use steradian::shape::serialized::{
+        read_serialized, DEFAULT_FACE_NORMALS, DEFAULT_SHAPE_INDEX,
+    };
+    let p = &node.props;
+    let file = p
+        .get_string("filename")?
+        .ok_or_else(|| LoadError::at(&node.pos, format!("{}: missing 'filename'", node.desc())))?;
+    let path = b.resolve_path(node, &file);
+    let shape_index = match p.get_int("shape_index")? {
+        None => DEFAULT_SHAPE_INDEX,
+        Some(i) => u32::try_from(i).map_err(|_| {
+            LoadError::at(
+                p.position("shape_index").unwrap_or(&node.pos),
+                format!(
+                    "{}: shape_index must be a non-negative 32-bit integer, got {i}",
+                    node.desc()
+                ),
+            )
+        })?,
+    };
+    let face_normals = p.get_bool("face_normals")?.unwrap_or(DEFAULT_FACE_NORMALS);
+    // Errors reading the file are placed at its `filename`.
+    let file_err = |e: steradian::shape::ShapeError| {
+        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {e}", node.desc()))
+    };
+    let shape = read_serialized(&path, shape_index).map_err(file_err)?;
+    Mesh::from_data(shape.data, to_world, flip_normals, face_normals).map_err(file_err)
 }

@@ -156,7 +156,7 @@ impl fmt::Display for RenderError {
             RenderError::BadSensor(i) => write!(f, "the scene has no sensor number {i}"),
             RenderError::NotACamera => write!(
                 f,
-                "irradiance maps need a camera sensor (perspective or thinlens), not a meter"
+                "irradiance maps need a camera sensor (perspective, thinlens or orthographic), not a meter"
             ),
             RenderError::BadOption { option, reason } => write!(f, "{option} {reason}"),
             RenderError::ThreadPool(e) => write!(f, "could not start worker threads: {e}"),

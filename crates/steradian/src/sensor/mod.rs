@@ -3,12 +3,14 @@
 
 mod fov;
 mod irradiancemeter;
+pub mod orthographic;
 mod perspective;
 mod radiancemeter;
 mod thinlens;
 
 pub use fov::{FieldOfView, FovAxis};
 pub use irradiancemeter::IrradianceMeter;
+pub use orthographic::Orthographic;
 pub use perspective::Perspective;
 pub use radiancemeter::RadianceMeter;
 pub use thinlens::ThinLens;
@@ -24,6 +26,7 @@ use crate::sampling::{PixelSampler, Sampler};
 pub enum SensorKind {
     Perspective(Perspective),
     ThinLens(ThinLens),
+    Orthographic(Orthographic),
     RadianceMeter(RadianceMeter),
     IrradianceMeter(IrradianceMeter),
 }
@@ -65,6 +68,7 @@ impl Sensor {
         match &self.kind {
             SensorKind::Perspective(c) => Some(c.sample_ray(film_uv)),
             SensorKind::ThinLens(c) => Some(c.sample_ray(film_uv, aperture)),
+            SensorKind::Orthographic(c) => Some(c.sample_ray(film_uv)),
             SensorKind::RadianceMeter(_) | SensorKind::IrradianceMeter(_) => None,
         }
     }
@@ -76,7 +80,7 @@ impl Sensor {
         match &self.kind {
             SensorKind::RadianceMeter(m) => Some(m.ray()),
             SensorKind::IrradianceMeter(_) => None,
-            SensorKind::Perspective(_) | SensorKind::ThinLens(_) => {
+            SensorKind::Perspective(_) | SensorKind::ThinLens(_) | SensorKind::Orthographic(_) => {
                 self.camera_ray(film_uv, sampler)
             }
         }
@@ -85,9 +89,10 @@ impl Sensor {
     /// What the sensor measures.
     pub fn quantity(&self) -> Quantity {
         match self.kind {
-            SensorKind::Perspective(_) | SensorKind::ThinLens(_) | SensorKind::RadianceMeter(_) => {
-                Quantity::Radiance
-            }
+            SensorKind::Perspective(_)
+            | SensorKind::ThinLens(_)
+            | SensorKind::Orthographic(_)
+            | SensorKind::RadianceMeter(_) => Quantity::Radiance,
             SensorKind::IrradianceMeter(_) => Quantity::Irradiance,
         }
     }

@@ -1,7 +1,8 @@
 //! Shapes: the surfaces light interacts with.
 //!
-//! One file per Mitsuba 3 shape plugin (`obj`, `ply`, `cube`, `rectangle`, `disk`, `sphere`,
-//! `cylinder`). [`Shape`] is a closed enum: every method is one `match`, no dynamic dispatch.
+//! One file per Mitsuba 3 shape plugin (`obj`, `ply`, `serialized`, `cube`, `rectangle`,
+//! `disk`, `sphere`, `cylinder`). [`Shape`] is a closed enum: every method is one `match`, no
+//! dynamic dispatch.
 //!
 //! Conventions used by every shape:
 //! - `n` is the shape's own geometric normal (outward / front side), never flipped towards a
@@ -25,6 +26,7 @@ mod mesh;
 mod obj;
 mod ply;
 mod rectangle;
+pub mod serialized;
 mod sphere;
 
 pub use cube::cube;
@@ -34,6 +36,7 @@ pub use mesh::{Mesh, MeshData};
 pub use obj::{read_obj, DEFAULT_FLIP_TEX_COORDS};
 pub use ply::read_ply;
 pub use rectangle::Rectangle;
+pub use serialized::{read_serialized, SerializedShape};
 pub use sphere::Sphere;
 
 /// Default `flip_normals` of every shape (Mitsuba's).

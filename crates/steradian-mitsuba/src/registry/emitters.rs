@@ -1,8 +1,9 @@
 //! Emitter plugins: `area` (attached to a shape), `point`, `spot`, `directional`,
-//! `constant`.
+//! `constant`, `envmap`.
 
 use steradian::emitter::{
-    AreaLight, ConstantEnvironment, DirectionalLight, Emitter, PointLight, SpotLight,
+    AreaLight, ConstantEnvironment, DirectionalLight, Emitter, EnvironmentMap, PointLight,
+    SpotLight,
 };
 use steradian::geometry::Transform;
 use steradian::{Spectrum, Vec3};
@@ -11,7 +12,7 @@ use super::{at, at_property, unknown_type};
 use crate::error::LoadError;
 use crate::xml::PluginNode;
 
-const STANDALONE: &[&str] = &["point", "spot", "directional", "constant"];
+const STANDALONE: &[&str] = &["point", "spot", "directional", "constant", "envmap"];
 
 /// The `area` emitter of shape number `shape`.
 pub(crate) fn build_area(
@@ -58,8 +59,46 @@ fn position_or_to_world(node: &PluginNode) -> Result<Transform, LoadError> {
     }
 }
 
+/// The `envmap` emitter (parameters and defaults: `steradian::emitter::EnvironmentMap`).
+fn build_envmap(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let Some(filename) = p.get_string("filename")? else {
+        return Err(LoadError::at(
+            &node.pos,
+            format!("{}: missing parameter 'filename' (a lat-long image)", node.desc()),
+        ));
+    };
+    let scale = p.get_float("scale")?.unwrap_or(EnvironmentMap::DEFAULT_SCALE);
+    let mis_compensation =
+        p.get_bool("mis_compensation")?.unwrap_or(EnvironmentMap::DEFAULT_MIS_COMPENSATION);
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let at_file = |msg: String| {
+        LoadError::at(
+            p.position("filename").unwrap_or(&node.pos),
+            format!("{}: {msg}", node.desc()),
+        )
+    };
+    let image =
+        steradian::texture::read_image(&b.resolve_path(node, &filename)).map_err(at_file)?;
+    let env = EnvironmentMap::new(&filename, image, scale, &to_world, mis_compensation).map_err(
+        |msg| {
+            if msg.starts_with("scale") {
+                at_property(node, &["scale"])(msg)
+            } else if msg.starts_with("to_world") {
+                at_property(node, &["to_world"])(msg)
+            } else {
+                at_file(msg)
+            }
+        },
+    )?;
+    Ok(Emitter::EnvMap(env))
+}
+
 /// An emitter declared at the scene level.
-pub(crate) fn build_standalone(node: &PluginNode) -> Result<Emitter, LoadError> {
+pub(crate) fn build_standalone(
+    b: &super::Builder,
+    node: &PluginNode,
+) -> Result<Emitter, LoadError> {
     let p = &node.props;
     let emitter = match node.plugin_type.as_str() {
         "point" => {
@@ -121,6 +160,7 @@ pub(crate) fn build_standalone(node: &PluginNode) -> Result<Emitter, LoadError> 
             check_non_negative(node, "radiance", radiance)?;
             Emitter::Constant(ConstantEnvironment::new(radiance))
         }
+        "envmap" => build_envmap(b, node)?,
         "area" => {
             return Err(LoadError::at(
                 &node.pos,

@@ -65,10 +65,10 @@ fn unknown_bsdf_type() {
 #[test]
 fn unknown_emitter_type() {
     check(
-        &err(&scene("<emitter type=\"envmap\"/>")),
+        &err(&scene("<emitter type=\"envmapp\"/>")),
         2,
         1,
-        &["unknown emitter plugin type 'envmap'", "constant"],
+        &["unknown emitter plugin type 'envmapp'", "constant", "envmap"],
     );
     let xml = scene("<shape type=\"sphere\">\n  <emitter type=\"point\"/>\n</shape>");
     check(&err(&xml), 3, 3, &["a shape can only carry an 'area' emitter, not 'point'"]);

@@ -110,7 +110,9 @@ impl Scene {
             .map(|(i, _)| i as u32)
             .collect();
         if envs.len() > 1 {
-            return Err("only one environment emitter (`constant`) is allowed per scene".into());
+            return Err(
+                "only one environment emitter (`constant` or `envmap`) is allowed per scene".into(),
+            );
         }
         let accel = Accel::build(&shapes);
         let (light_pmf, light_cdf) =

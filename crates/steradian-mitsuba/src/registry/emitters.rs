@@ -1,8 +1,9 @@
 //! Emitter plugins: `area` (attached to a shape), `point`, `spot`, `directional`,
-//! `constant`.
+//! `constant`, `envmap`.
 
 use steradian::emitter::{
-    AreaLight, ConstantEnvironment, DirectionalLight, Emitter, PointLight, SpotLight,
+    AreaLight, ConstantEnvironment, DirectionalLight, Emitter, EnvironmentMap, PointLight,
+    SpotLight,
 };
 use steradian::geometry::Transform;
 use steradian::{Spectrum, Vec3};
@@ -58,27 +59,61 @@ fn position_or_to_world(node: &PluginNode) -> Result<Transform, LoadError> {
 }
 
 /// Builds one emitter declared at the scene level from its node.
-type BuildEmitter = fn(&PluginNode) -> Result<Emitter, LoadError>;
+type BuildEmitter = fn(&super::Builder, &PluginNode) -> Result<Emitter, LoadError>;
 
 /// Every emitter plugin declared at the scene level, by Mitsuba `type`. (`area` is the one
 /// emitter a shape carries: [`build_area`].)
-pub(super) const EMITTERS: &Plugins<BuildEmitter> =
-    &[("point", point), ("spot", spot), ("directional", directional), ("constant", constant)];
+pub(super) const EMITTERS: &Plugins<BuildEmitter> = &[
+    ("point", point),
+    ("spot", spot),
+    ("directional", directional),
+    ("constant", constant),
+    ("envmap", build_envmap),
+];
+
+/// The `envmap` emitter (parameters and defaults: `steradian::emitter::EnvironmentMap`).
+fn build_envmap(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let Some(filename) = p.get_string("filename")? else {
+        return Err(LoadError::at(
+            &node.pos,
+            format!("{}: missing parameter 'filename' (a lat-long image)", node.desc()),
+        ));
+    };
+    let scale = p.get_float("scale")?.unwrap_or(EnvironmentMap::DEFAULT_SCALE);
+    let mis_compensation =
+        p.get_bool("mis_compensation")?.unwrap_or(EnvironmentMap::DEFAULT_MIS_COMPENSATION);
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let at_file = |msg: String| {
+        LoadError::at(
+            p.position("filename").unwrap_or(&node.pos),
+            format!("{}: {msg}", node.desc()),
+        )
+    };
+    let image =
+        steradian::texture::read_image(&b.resolve_path(node, &filename)).map_err(at_file)?;
+    let env = EnvironmentMap::new(&filename, image, scale, &to_world, mis_compensation)
+        .map_err(at_param(node))?;
+    Ok(Emitter::EnvMap(env))
+}
 
 /// An emitter declared at the scene level.
-pub(crate) fn build_standalone(node: &PluginNode) -> Result<Emitter, LoadError> {
+pub(crate) fn build_standalone(
+    b: &super::Builder,
+    node: &PluginNode,
+) -> Result<Emitter, LoadError> {
     if node.plugin_type == "area" {
         return Err(LoadError::at(
             &node.pos,
             "an 'area' emitter must be nested inside the <shape> that emits",
         ));
     }
-    let emitter = lookup(EMITTERS, node)?(node)?;
+    let emitter = lookup(EMITTERS, node)?(b, node)?;
     node.check_all_used()?;
     Ok(emitter)
 }
 
-fn point(node: &PluginNode) -> Result<Emitter, LoadError> {
+fn point(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let default = Spectrum::splat(PointLight::DEFAULT_INTENSITY);
     let intensity = node.props.get_spectrum("intensity")?.unwrap_or(default);
     check_non_negative(node, "intensity", intensity)?;
@@ -86,7 +121,7 @@ fn point(node: &PluginNode) -> Result<Emitter, LoadError> {
     Ok(Emitter::Point(PointLight::new(to_world.point(Vec3::ZERO), intensity)))
 }
 
-fn spot(node: &PluginNode) -> Result<Emitter, LoadError> {
+fn spot(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
     let intensity =
         p.get_spectrum("intensity")?.unwrap_or(Spectrum::splat(SpotLight::DEFAULT_INTENSITY));
@@ -117,7 +152,7 @@ fn spot(node: &PluginNode) -> Result<Emitter, LoadError> {
     Ok(Emitter::Spot(spot))
 }
 
-fn directional(node: &PluginNode) -> Result<Emitter, LoadError> {
+fn directional(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
     let irradiance = p
         .get_spectrum("irradiance")?
@@ -137,7 +172,7 @@ fn directional(node: &PluginNode) -> Result<Emitter, LoadError> {
     Ok(Emitter::Directional(DirectionalLight::new(direction, irradiance).map_err(at(node))?))
 }
 
-fn constant(node: &PluginNode) -> Result<Emitter, LoadError> {
+fn constant(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let default = Spectrum::splat(ConstantEnvironment::DEFAULT_RADIANCE);
     let radiance = node.props.get_spectrum("radiance")?.unwrap_or(default);
     check_non_negative(node, "radiance", radiance)?;

@@ -158,12 +158,12 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
                 b.bsdf_index(node)?;
             }
             ObjectTag::Emitter => {
-                let e = emitters::build_standalone(node)?;
+                let e = emitters::build_standalone(&b, node)?;
                 if e.is_environment() {
                     if let Some(first) = environment_pos.replace(node.pos.clone()) {
                         return Err(LoadError::at(
                             &node.pos,
-                            format!("{}: only one environment emitter (`constant`) is allowed per scene; the first is at {first}", node.desc()),
+                            format!("{}: only one environment emitter (`constant` or `envmap`) is allowed per scene; the first is at {first}", node.desc()),
                         ));
                     }
                 }

@@ -7,6 +7,7 @@
 //! | `spot`        | radiant intensity I on axis | W/sr      |
 //! | `directional` | irradiance H ⟂ the beam   | W/m²        |
 //! | `constant`    | radiance L of the sky     | W/(m²·sr)   |
+//! | `envmap`      | radiance L of the sky, per pixel × `scale` | W/(m²·sr) |
 //!
 //! `sample_direction` answers "from which direction does this light reach point p, and with
 //! what weight?": the returned `weight` is the incident radiance divided by the solid-angle
@@ -16,6 +17,7 @@
 mod area;
 mod constant;
 mod directional;
+mod envmap;
 mod light_selection;
 mod point;
 mod spot;
@@ -23,6 +25,7 @@ mod spot;
 pub use area::AreaLight;
 pub use constant::ConstantEnvironment;
 pub use directional::DirectionalLight;
+pub use envmap::EnvironmentMap;
 pub use light_selection::LightSelection;
 pub use point::PointLight;
 pub use spot::SpotLight;
@@ -65,6 +68,7 @@ pub enum Emitter {
     Spot(SpotLight),
     Directional(DirectionalLight),
     Constant(ConstantEnvironment),
+    EnvMap(EnvironmentMap),
 }
 
 impl Emitter {
@@ -77,6 +81,7 @@ impl Emitter {
             Emitter::Spot(e) => e.sample_direction(p),
             Emitter::Directional(e) => e.sample_direction(p),
             Emitter::Constant(e) => e.sample_direction(p, u),
+            Emitter::EnvMap(e) => e.sample_direction(u),
         }
     }
 
@@ -87,6 +92,7 @@ impl Emitter {
         match self {
             Emitter::Area(e) => e.pdf_direction(shapes, p, wi, light),
             Emitter::Constant(e) => e.pdf_direction(wi),
+            Emitter::EnvMap(e) => e.pdf_direction(wi),
             Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => 0.0,
         }
     }
@@ -99,6 +105,7 @@ impl Emitter {
         match self {
             Emitter::Area(e) => e.radiance(wo, n, uv),
             Emitter::Constant(e) => e.radiance(),
+            Emitter::EnvMap(e) => e.radiance(-wo),
             Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => Spectrum::ZERO,
         }
     }
@@ -106,7 +113,7 @@ impl Emitter {
     #[inline]
     pub fn support(&self) -> Support {
         match self {
-            Emitter::Area(_) | Emitter::Constant(_) => Support::Extended,
+            Emitter::Area(_) | Emitter::Constant(_) | Emitter::EnvMap(_) => Support::Extended,
             Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => Support::Delta,
         }
     }
@@ -120,14 +127,14 @@ impl Emitter {
         match self {
             Emitter::Area(e) => shapes[e.shape as usize].light_sampling_bounded(p),
             Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => true,
-            Emitter::Constant(_) => false,
+            Emitter::Constant(_) | Emitter::EnvMap(_) => false,
         }
     }
 
     /// True for lights at infinity that rays escaping the scene see.
     #[inline]
     pub fn is_environment(&self) -> bool {
-        matches!(self, Emitter::Constant(_))
+        matches!(self, Emitter::Constant(_) | Emitter::EnvMap(_))
     }
 
     /// Total emitted flux Φ in W (per channel); for lights at infinity, the flux through the
@@ -140,6 +147,7 @@ impl Emitter {
             Emitter::Spot(e) => e.intensity * e.solid_angle_factor(),
             Emitter::Directional(e) => e.irradiance * PI * scene_radius * scene_radius,
             Emitter::Constant(e) => e.radiance * 4.0 * PI * PI * scene_radius * scene_radius,
+            Emitter::EnvMap(e) => e.integral() * PI * scene_radius * scene_radius,
         }
     }
 }

@@ -5,10 +5,11 @@
 //!
 //! - Emitted light is estimated by two strategies combined with the power heuristic: every
 //!   emitter is sampled once (delta lights contribute I·cos θ/r² or H·cos θ exactly, with
-//!   weight 1), and a cosine-weighted direction that happens to hit an emitter. The uniform
-//!   sky (`constant`) is the exception: for a radiance that is the same in every direction the
-//!   cosine-weighted strategy alone has zero variance wherever the sky is unoccluded, so it is
-//!   used alone (with weight 1) rather than diluted by uniform-sphere samples.
+//!   weight 1), and a cosine-weighted direction that happens to hit an emitter (or escapes to
+//!   an `envmap` sky). The uniform sky (`constant`) is the exception: for a radiance that is
+//!   the same in every direction the cosine-weighted strategy alone has zero variance wherever
+//!   the sky is unoccluded, so it is used alone (with weight 1) rather than diluted by
+//!   uniform-sphere samples.
 //! - Reflected light along the cosine-weighted direction comes from the scene's integrator
 //!   with the first hit's own emission hidden, so `max_depth` keeps Mitsuba's meaning (1 =
 //!   emitters seen directly from the meter, 2 = one bounce, ...).
@@ -19,8 +20,8 @@ use glam::{Vec2, Vec3};
 
 use super::mis::power_heuristic;
 use super::{EmitterVisibility, Integrator};
-use crate::emitter::Support;
-use crate::geometry::{offset_ray_origin, Frame, Ray};
+use crate::emitter::{Emitter, Support};
+use crate::geometry::{offset_ray_origin, Frame, Ray, SurfacePoint};
 use crate::sampling::{warp, PixelSampler};
 use crate::scene::Scene;
 use crate::Spectrum;
@@ -64,7 +65,7 @@ pub fn estimate_irradiance(
     // 1. every emitter, sampled once
     for emitter in scene.emitters.iter() {
         let u = sampler.next_2d();
-        if emitter.is_environment() {
+        if matches!(emitter, Emitter::Constant(_)) {
             continue;
         }
         let Some(es) = emitter.sample_direction(&scene.shapes, p, u) else { continue };
@@ -102,8 +103,17 @@ pub fn estimate_irradiance(
         }
         None => {
             if let Some(env) = scene.environment {
-                // the sky is not light-sampled here (see the module docs): weight 1
-                h += scene.emitters[env as usize].radiance(-wi, Vec3::ZERO, Vec2::ZERO) * PI;
+                let emitter = &scene.emitters[env as usize];
+                let le = emitter.radiance(-wi, Vec3::ZERO, Vec2::ZERO);
+                // a `constant` sky is not light-sampled here (see the module docs): weight 1
+                let w = match emitter {
+                    Emitter::Constant(_) => 1.0,
+                    _ => power_heuristic(
+                        pdf,
+                        emitter.pdf_direction(&scene.shapes, p, wi, &SurfacePoint::AT_INFINITY),
+                    ),
+                };
+                h += le * (PI * w);
             }
         }
     }

@@ -1,10 +1,10 @@
 //! Reading texture images: PNG (8 and 16 bit, grey, grey+alpha, RGB, RGBA, palette), JPEG
-//! (baseline and progressive, grey or RGB) and OpenEXR (the R, G, B channels of the first
-//! layer that has them). The format is recognised from the file's first bytes, as Mitsuba
+//! (baseline and progressive, grey or RGB), OpenEXR (the R, G, B channels of the first
+//! layer that has them) and Radiance RGBE `.hdr` (`rgbe.rs`). The format is recognised from the file's first bytes, as Mitsuba
 //! does, not from its extension.
 //!
 //! Integer images come back normalised to [0, 1] and still sRGB-encoded (the caller decides
-//! whether to linearise, see `bitmap`'s `raw`); EXR values are linear. An alpha channel is
+//! whether to linearise, see `bitmap`'s `raw`); EXR and RGBE values are linear. An alpha channel is
 //! dropped, as Mitsuba's `bitmap` converts Y·A to Y and RGBA to RGB without premultiplying.
 
 use std::fs::File;
@@ -17,12 +17,13 @@ pub enum ImageFormat {
     Png,
     Jpeg,
     Exr,
+    Rgbe,
 }
 
 impl ImageFormat {
-    /// True for formats whose integer values are sRGB-encoded (everything but EXR).
+    /// True for formats whose integer values are sRGB-encoded (everything but EXR and RGBE).
     pub fn is_srgb(&self) -> bool {
-        !matches!(self, ImageFormat::Exr)
+        !matches!(self, ImageFormat::Exr | ImageFormat::Rgbe)
     }
 }
 
@@ -38,7 +39,7 @@ pub struct LoadedImage {
     pub format: ImageFormat,
 }
 
-/// Reads a PNG, JPEG or EXR file. Errors name the file and the problem.
+/// Reads a PNG, JPEG, EXR or RGBE file. Errors name the file and the problem.
 pub fn read_image(path: &Path) -> Result<LoadedImage, String> {
     let err = |msg: String| format!("cannot read image \"{}\": {msg}", path.display());
     let mut file = File::open(path).map_err(|e| err(e.to_string()))?;
@@ -59,8 +60,15 @@ pub fn read_image(path: &Path) -> Result<LoadedImage, String> {
             data: img.data,
             format: ImageFormat::Exr,
         })
+    } else if magic.starts_with(b"#?") {
+        let bytes = std::fs::read(path).map_err(|e| err(e.to_string()))?;
+        let (width, height, data) = super::rgbe::decode_rgbe(&bytes).map_err(err)?;
+        Ok(LoadedImage { width, height, channels: 3, data, format: ImageFormat::Rgbe })
     } else {
-        Err(err("not a PNG, JPEG or OpenEXR file (steradian reads these three formats)".into()))
+        Err(err(
+            "not a PNG, JPEG, OpenEXR or Radiance RGBE file (steradian reads these four formats)"
+                .into(),
+        ))
     }
 }
 
@@ -196,6 +204,10 @@ mod tests {
         assert!(read_image(&p).unwrap_err().contains("corrupt.jpg"));
         let p = dir.join("text.png");
         std::fs::write(&p, "hello").unwrap();
-        assert!(read_image(&p).unwrap_err().contains("not a PNG, JPEG or OpenEXR"));
+        assert!(read_image(&p).unwrap_err().contains("not a PNG, JPEG, OpenEXR or Radiance"));
+        let p = dir.join("truncated.hdr");
+        std::fs::write(&p, "#?RADIANCE\n\n-Y 2 +X 2\n\x01").unwrap();
+        let e = read_image(&p).unwrap_err();
+        assert!(e.contains("truncated.hdr") && e.contains("truncated RGBE"), "{e}");
     }
 }

@@ -10,10 +10,12 @@
 mod bitmap;
 mod checkerboard;
 mod image_file;
+mod rgbe;
 
-pub use bitmap::{Bitmap, FilterType, UvTransform, WrapMode};
+pub use bitmap::{srgb_to_linear, Bitmap, FilterType, UvTransform, WrapMode};
 pub use checkerboard::Checkerboard;
 pub use image_file::{read_image, ImageFormat, LoadedImage};
+pub use rgbe::decode_rgbe;
 
 use glam::Vec2;
 

@@ -462,7 +462,8 @@ mod tests {
         ) {
             Bsdf::Conductor(c) => {
                 assert!(
-                    (c.ior.eta().x - 0.143036).abs() < 1e-6 && (c.ior.k().x - 3.983).abs() < 1e-6
+                    (c.ior.eta().x - 0.14303598).abs() < 1e-6
+                        && (c.ior.k().x - 3.982997).abs() < 1e-6
                 )
             }
             b => panic!("{b:?}"),

@@ -23,7 +23,7 @@ fn scenes() -> Vec<(String, String)> {
         .into_iter()
         .map(|p| (p.display().to_string(), std::fs::read_to_string(&p).unwrap()))
         .collect();
-    assert_eq!(v.len(), 15, "the scenes of tests/reference/ and scenes/validation/");
+    assert!(v.len() >= 15, "{} scenes in tests/reference/ and scenes/validation/", v.len());
     v
 }
 

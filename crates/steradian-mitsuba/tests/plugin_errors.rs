@@ -53,13 +53,32 @@ fn unknown_bsdf_type() {
         &err(&scene("<bsdf type=\"principled\"/>")),
         2,
         1,
-        &["unknown bsdf plugin type 'principled'", "diffuse"],
+        &["the Mitsuba 3 bsdf plugin 'principled' is not supported by steradian", "diffuse"],
     );
     // Nested in a shape, and nested in a twosided BSDF.
     let xml = scene("<shape type=\"sphere\">\n  <bsdf type=\"plastik\"/>\n</shape>");
     check(&err(&xml), 3, 3, &["unknown bsdf plugin type 'plastik'"]);
     let xml = scene("<bsdf type=\"twosided\">\n    <bsdf type=\"conductr\"/>\n</bsdf>");
     check(&err(&xml), 3, 5, &["unknown bsdf plugin type 'conductr'"]);
+}
+
+/// Mitsuba 3 plugins steradian lacks are named as unsupported; misspellings stay unknown.
+#[test]
+fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
+    for (tag, ty) in [
+        ("shape", "shapegroup"),
+        ("shape", "bsplinecurve"),
+        ("emitter", "projector"),
+        ("bsdf", "pplastic"),
+        ("bsdf", "polarizer"),
+        ("integrator", "ptracer"),
+        ("integrator", "aov"),
+    ] {
+        let e = err(&scene(&format!("<{tag} type=\"{ty}\"/>")));
+        let want = format!("the Mitsuba 3 {tag} plugin '{ty}' is not supported by steradian");
+        check(&e, 2, 1, &[&want]);
+        assert!(!e.message.contains("unknown"), "{e}");
+    }
 }
 
 #[test]
@@ -80,7 +99,7 @@ fn unknown_sensor_type() {
         &err(&scene("<sensor type=\"batch\"/>")),
         2,
         1,
-        &["unknown sensor plugin type 'batch'", "perspective"],
+        &["the Mitsuba 3 sensor plugin 'batch' is not supported by steradian", "perspective"],
     );
 }
 
@@ -90,7 +109,7 @@ fn unknown_integrator_type() {
         &err(&scene("<integrator type=\"volpath\"/>")),
         2,
         1,
-        &["unknown integrator plugin type 'volpath'", "path"],
+        &["the Mitsuba 3 integrator plugin 'volpath' is not supported", "path"],
     );
 }
 
@@ -101,7 +120,7 @@ fn unknown_rfilter_film_and_sampler_types() {
     let xml = scene("<sensor type=\"perspective\">\n  <sampler type=\"halton\"/>\n</sensor>");
     check(&err(&xml), 3, 3, &["unknown sampler plugin type 'halton'", "independent"]);
     let xml = scene("<sensor type=\"perspective\">\n  <film type=\"specfilm\"/>\n</sensor>");
-    check(&err(&xml), 3, 3, &["unknown film plugin type 'specfilm'", "hdrfilm"]);
+    check(&err(&xml), 3, 3, &["the Mitsuba 3 film plugin 'specfilm' is not supported", "hdrfilm"]);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -97,20 +97,76 @@ impl Builder {
 /// read the table, so the two cannot drift apart.
 pub(crate) type Plugins<F> = [(&'static str, F)];
 
-/// The builder for `node`'s `type`, or an error naming every `type` of the family.
+/// Mitsuba 3 plugins (3.9.1's plugin list, by family) that steradian does not have: a scene
+/// naming one is told so by name, not that the type is unknown. Polarised and spectral-only
+/// plugins stay here for good (steradian renders RGB); the others are missing features.
+pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
+    (
+        "bsdf",
+        &[
+            "hair",
+            "measured",
+            "measured_polarized",
+            "null",
+            "polarizer",
+            "pplastic",
+            "principled",
+            "principledthin",
+            "retarder",
+        ],
+    ),
+    ("emitter", &["directionalarea", "projector"]),
+    (
+        "shape",
+        &[
+            "shapegroup",
+            "instance",
+            "bsplinecurve",
+            "linearcurve",
+            "sdfgrid",
+            "ellipsoids",
+            "ellipsoidsmesh",
+            "merge",
+        ],
+    ),
+    ("sensor", &["distant", "batch"]),
+    ("film", &["specfilm"]),
+    ("texture", &["mesh_attribute", "volume"]),
+    (
+        "integrator",
+        &[
+            "aov",
+            "depth",
+            "moment",
+            "ptracer",
+            "stokes",
+            "volpath",
+            "volpathmis",
+            "prb",
+            "prb_basic",
+            "prbvolpath",
+            "direct_projective",
+            "prb_projective",
+        ],
+    ),
+];
+
+/// The builder for `node`'s `type`, or an error: a Mitsuba 3 plugin steradian lacks is named as
+/// unsupported, any other type is unknown; both list every `type` of the family.
 pub(crate) fn lookup<F: Copy>(plugins: &Plugins<F>, node: &PluginNode) -> Result<F, LoadError> {
-    match plugins.iter().find(|(name, _)| *name == node.plugin_type) {
-        Some((_, build)) => Ok(*build),
-        None => Err(LoadError::at(
-            &node.pos,
-            format!(
-                "unknown {} plugin type '{}' (steradian knows: {})",
-                node.tag.name(),
-                node.plugin_type,
-                names(plugins).join(", ")
-            ),
-        )),
+    if let Some((_, build)) = plugins.iter().find(|(name, _)| *name == node.plugin_type) {
+        return Ok(*build);
     }
+    let (tag, ty) = (node.tag.name(), node.plugin_type.as_str());
+    let known = names(plugins).join(", ");
+    let unsupported =
+        MITSUBA_UNSUPPORTED.iter().any(|(family, list)| *family == tag && list.contains(&ty));
+    let message = if unsupported {
+        format!("the Mitsuba 3 {tag} plugin '{ty}' is not supported by steradian (it supports: {known})")
+    } else {
+        format!("unknown {tag} plugin type '{ty}' (steradian knows: {known})")
+    };
+    Err(LoadError::at(&node.pos, message))
 }
 
 /// The names of a family's plugins, in table order.

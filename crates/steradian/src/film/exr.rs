@@ -2,7 +2,9 @@
 //!
 //! Files are written as one EXR part with lossless compression; the main image is stored in
 //! channels `R`, `G`, `B`, and extra layers as `<prefix>.R`, `<prefix>.G`, `<prefix>.B` (e.g.
-//! `stderr.R`), the naming Mitsuba and image viewers use for layers.
+//! `stderr.R`), the naming Mitsuba and image viewers use for layers. The same image gives the
+//! same file byte for byte: chunks are compressed and written in order on one thread (the exr
+//! crate's parallel writer stores them in the order its threads finish).
 
 use std::path::Path;
 
@@ -62,7 +64,7 @@ pub fn write_exr_layers_as(
         }
     }
     let image = ExrImage::from_channels((w as usize, h as usize), AnyChannels::sort(channels));
-    image.write().to_file(path).map_err(|e| err(e.to_string()))
+    image.write().non_parallel().to_file(path).map_err(|e| err(e.to_string()))
 }
 
 /// Reads the RGB channels (`R`, `G`, `B`, float16, float32 or uint32; any compression) of an
@@ -109,6 +111,22 @@ mod tests {
             .map(|i| (rng.next_f32() * 2.0 - 0.2) * 10f32.powi((i % 7) as i32 - 3))
             .collect();
         Image::from_data(w, h, data).unwrap()
+    }
+
+    #[test]
+    fn the_same_image_gives_the_same_file() {
+        // 300 x 200 pixels: 4 x 4 tiles of 64, enough chunks for a parallel writer to reorder
+        let dir = temp_dir("film-exr-same-bytes");
+        let img = random_image(300, 200, 11);
+        let bytes = |name: &str| {
+            let p = dir.join(name);
+            write_exr_layers(&p, &[("", &img), ("stderr", &img)]).unwrap();
+            std::fs::read(&p).unwrap()
+        };
+        let first = bytes("a.exr");
+        for k in 0..4 {
+            assert!(bytes(&format!("b{k}.exr")) == first, "write {k} differs");
+        }
     }
 
     #[test]

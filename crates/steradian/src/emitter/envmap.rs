@@ -309,12 +309,11 @@ impl EnvironmentMap {
 
 #[cfg(test)]
 mod tests {
-    use std::f64::consts::PI as PI64;
-
     use glam::Vec2;
 
     use super::*;
     use crate::sampling::Pcg32;
+    use crate::testkit::chi2::{directions_pvalue, CapGrid};
     use crate::texture::ImageFormat;
 
     /// A w×h RGB image from a function of the pixel.
@@ -401,52 +400,29 @@ mod tests {
         assert!(worst < 1e-3, "pdf mismatch {worst}");
     }
 
-    /// χ² test of sampled directions against `pdf_direction`, on a (θ, φ) grid of the
-    /// emitter's frame whose cell edges fall between quadrature points of the map's cells.
+    /// χ² test of sampled directions against `pdf_direction` with the shared harness, on a
+    /// (θ, φ) grid of the emitter's frame (θ from +y, φ = atan2(x, −z), the map's own axes)
+    /// whose cell edges fall between quadrature points of the map's cells.
     fn chi2(env: &EnvironmentMap, to_world: &Transform, n: usize, seed: u64) -> f64 {
-        const NT: usize = 20;
-        const NP: usize = 40;
-        let mut observed = vec![0f64; NT * NP];
-        let mut rng = Pcg32::new(seed, 3);
-        for _ in 0..n {
-            let Some(s) = env.sample_direction(Vec2::new(rng.next_f32(), rng.next_f32())) else {
-                continue;
-            };
-            let d = to_world.inverse().vector(s.wi);
-            let t = (d.y.clamp(-1.0, 1.0) as f64).acos();
-            let mut p = (d.x as f64).atan2(-d.z as f64);
-            if p < 0.0 {
-                p += 2.0 * PI64;
-            }
-            let it = ((t / PI64 * NT as f64) as usize).min(NT - 1);
-            let ip = ((p / (2.0 * PI64) * NP as f64) as usize).min(NP - 1);
-            observed[it * NP + ip] += 1.0;
-        }
-        let sub = 16;
-        let mut expected = vec![0f64; NT * NP];
-        for it in 0..NT {
-            for ip in 0..NP {
-                let mut acc = 0.0;
-                for a in 0..sub {
-                    for b in 0..sub {
-                        let t = (it as f64 + (a as f64 + 0.5) / sub as f64) * PI64 / NT as f64;
-                        let p =
-                            (ip as f64 + (b as f64 + 0.5) / sub as f64) * 2.0 * PI64 / NP as f64;
-                        let d = Vec3::new(
-                            (t.sin() * p.sin()) as f32,
-                            t.cos() as f32,
-                            (-t.sin() * p.cos()) as f32,
-                        );
-                        acc += env.pdf_direction(to_world.vector(d)) as f64 * t.sin();
-                    }
-                }
-                let cell = (PI64 / NT as f64) * (2.0 * PI64 / NP as f64) / (sub * sub) as f64;
-                expected[it * NP + ip] = acc * cell * n as f64;
-            }
-        }
-        let total: f64 = expected.iter().sum::<f64>() / n as f64;
+        // grid (x, y, z) = map (−z, x, y): the harness's +z pole is the map's +y
+        let to_grid = |d: Vec3| Vec3::new(-d.z, d.x, d.y);
+        let from_grid = |g: Vec3| Vec3::new(g.y, g.z, -g.x);
+        let grid = CapGrid::SPHERE.with_sub(16);
+        let total: f64 = grid
+            .expected(1, |g| env.pdf_direction(to_world.vector(from_grid(g))) as f64)
+            .iter()
+            .sum();
         assert!((total - 1.0).abs() < 2e-3, "pdf integrates to {total}");
-        crate::testkit::chi2::chi2_test(&observed, &expected)
+        let mut rng = Pcg32::new(seed, 3);
+        directions_pvalue(
+            &grid,
+            n,
+            || {
+                let s = env.sample_direction(Vec2::new(rng.next_f32(), rng.next_f32()))?;
+                Some(to_grid(to_world.inverse().vector(s.wi)))
+            },
+            |g| env.pdf_direction(to_world.vector(from_grid(g))) as f64,
+        )
     }
 
     #[test]

@@ -25,8 +25,10 @@
 //!   `$name` is an error ("Unused parameter", as in current Mitsuba 3).
 //! - References may point forwards or backwards (Mitsuba links them after parsing);
 //!   an unknown id is an error at the `<ref>`. Duplicate ids are errors.
-//! - `<include filename>` is resolved relative to the including file; the children of its
-//!   `<scene>` root are merged into the current object.
+//! - `<path value="folder"/>` (children of the root only) adds a search folder; `<include
+//!   filename>`s and the plugins' file names are looked up in the search folders, the last
+//!   `<path>` first and the main scene's folder last ([`FileResolver`]). The children of an
+//!   included file's `<scene>` root are merged into the current object.
 //! - `<integer>` is parsed strictly (`1.5` is an error); `<boolean>` accepts `true`/`false`
 //!   in any case; `<point>`/`<vector>` need `value` or all of `x`, `y`, `z`; `<rgb>` takes
 //!   1 (broadcast) or 3 numbers.
@@ -34,13 +36,14 @@
 //! - Deliberately stricter than Mitsuba: degenerate transforms (zero scale, NaN, `up`
 //!   parallel to the view direction, singular matrices) are errors; spectrum wavelengths
 //!   must increase strictly; the root must be `<scene>`; an included file must have a
-//!   `<scene>` root; `<path>` and `<spectrum filename>` are not supported yet.
+//!   `<scene>` root; `<spectrum filename>` is not supported yet.
 //!
 //! ## Layers
 //! Each module imports only modules of lower layers, and the files inside a module import each
 //! other without cycles (`crates/steradian/tests/layers.rs` reads this list and checks the
 //! code against it):
-//! 1. `source`, `spectrum`: [`SourcePos`]; `wavelength:value` spectra → RGB.
+//! 1. `source`, `spectrum`, `file_resolver`: [`SourcePos`]; `wavelength:value` spectra → RGB;
+//!    the search folders for file names ([`FileResolver`]).
 //! 2. `error`: [`LoadError`].
 //! 3. `properties`: typed, usage-tracked properties.
 //! 4. `tree`, `upgrade`: the parsed scene tree ([`PluginNode`], [`SceneNode`]); the pre-2.0
@@ -54,6 +57,7 @@
 //! The crate root ([`load_file`], [`load_string`]) runs `xml` then `registry`.
 
 pub mod error;
+pub mod file_resolver;
 pub mod properties;
 pub mod source;
 pub mod spectrum;
@@ -62,6 +66,7 @@ pub mod upgrade;
 pub mod xml;
 
 pub use error::LoadError;
+pub use file_resolver::FileResolver;
 pub use properties::{Properties, PropertyValue, SpectrumValue};
 pub use source::SourcePos;
 pub use tree::{Child, ObjectTag, PluginNode, SceneNode};

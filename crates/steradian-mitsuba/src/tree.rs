@@ -10,6 +10,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 use crate::error::LoadError;
+use crate::file_resolver::FileResolver;
 use crate::properties::Properties;
 use crate::source::SourcePos;
 
@@ -170,6 +171,9 @@ pub struct SceneNode {
     pub root: Arc<PluginNode>,
     /// Objects by `id` (aliases included), e.g. to pick a sensor.
     pub ids: BTreeMap<String, Arc<PluginNode>>,
+    /// Where the plugins' relative file names are looked up (the scene's folder and its
+    /// `<path>`s).
+    pub resolver: FileResolver,
 }
 
 impl std::ops::Deref for SceneNode {

@@ -25,6 +25,7 @@ use steradian::render::Job;
 use steradian::scene::{Scene, SceneDescription};
 
 use crate::error::LoadError;
+use crate::file_resolver::FileResolver;
 use crate::tree::{ObjectTag, PluginNode, SceneNode};
 
 /// State while a scene is assembled.
@@ -36,23 +37,21 @@ pub(crate) struct Builder {
     black_bsdf: Option<u32>,
     /// Directory for relative paths when the scene did not come from a file.
     base_dir: PathBuf,
+    /// The scene's search folders.
+    resolver: FileResolver,
 }
 
 impl Builder {
-    /// The directory relative file names in `node` are resolved against: that of the file
-    /// the element was written in (includes have their own), else the loader's base.
+    /// The file a relative name in `node` means: the first of the scene's search folders
+    /// that holds it ([`FileResolver`]), else the name beside the file the element was
+    /// written in (includes have their own folder), else beside the loader's base.
     pub(crate) fn resolve_path(&self, node: &PluginNode, file: &str) -> PathBuf {
-        let p = Path::new(file);
-        if p.is_absolute() {
-            return p.to_path_buf();
-        }
-        let dir =
-            node.pos.file.parent().filter(|d| node.pos.file.is_file() && !d.as_os_str().is_empty());
-        match dir {
-            Some(d) => d.join(p),
-            None if node.pos.file.is_file() => p.to_path_buf(),
-            None => self.base_dir.join(p),
-        }
+        let declared_in = if node.pos.file.is_file() {
+            node.pos.file.parent().map(Path::to_path_buf).unwrap_or_default()
+        } else {
+            self.base_dir.clone()
+        };
+        self.resolver.resolve(file, &declared_in)
     }
 
     fn add_bsdf(&mut self, bsdf: Bsdf) -> u32 {
@@ -201,6 +200,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
         default_bsdf: None,
         black_bsdf: None,
         base_dir: base_dir.to_path_buf(),
+        resolver: tree.resolver.clone(),
     };
     let mut integrator_pos = None;
     let mut integrator = None;

@@ -9,6 +9,7 @@ use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
 use crate::error::LoadError;
+use crate::file_resolver::FileResolver;
 use crate::properties::Properties;
 use crate::source::SourcePos;
 use crate::tree::{Child, ObjectTag, PluginNode, SceneNode};
@@ -74,7 +75,7 @@ impl RawTree {
     }
 
     /// Links references and builds the shared tree under object `root`.
-    pub fn link(mut self, root: usize) -> Result<SceneNode, LoadError> {
+    pub fn link(mut self, root: usize, resolver: FileResolver) -> Result<SceneNode, LoadError> {
         let mut built: Vec<Option<Arc<PluginNode>>> = vec![None; self.nodes.len()];
         let mut visiting = vec![false; self.nodes.len()];
         let root = self.build(root, None, &mut built, &mut visiting)?;
@@ -87,7 +88,7 @@ impl RawTree {
                 }
             }
         }
-        Ok(SceneNode { root, ids })
+        Ok(SceneNode { root, ids, resolver })
     }
 
     fn lookup(&self, id: &str, pos: Option<&SourcePos>) -> Result<usize, LoadError> {

@@ -17,6 +17,7 @@ use super::link::{RawChild, RawNode, RawTree};
 use super::params::Params;
 use super::{transform, values};
 use crate::error::LoadError;
+use crate::file_resolver::FileResolver;
 use crate::properties::{Properties, PropertyValue};
 use crate::source::SourcePos;
 use crate::tree::{describe, ObjectTag, SceneNode};
@@ -34,13 +35,13 @@ pub fn parse_file(path: &Path, defines: &[(String, String)]) -> Result<SceneNode
         LoadError::new(None, format!("cannot read scene file \"{}\": {e}", path.display()))
     })?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
-    let mut p = Parser::new(defines);
+    let mut p = Parser::new(defines, &dir);
     p.include_stack.push(path.canonicalize().unwrap_or_else(|_| path.to_path_buf()));
     p.parse_root(Arc::new(path.to_path_buf()), &text, dir)
 }
 
-/// Parses a scene from a string (positions name the file `<string>`); `<include>`s are
-/// resolved relative to `base_dir`.
+/// Parses a scene from a string (positions name the file `<string>`); `base_dir` stands for
+/// the scene file's folder in the file search ([`FileResolver`]).
 pub fn parse_string(
     xml: &str,
     base_dir: &Path,
@@ -56,7 +57,7 @@ pub fn parse_string_named(
     base_dir: &Path,
     defines: &[(String, String)],
 ) -> Result<SceneNode, LoadError> {
-    let mut p = Parser::new(defines);
+    let mut p = Parser::new(defines, base_dir);
     p.parse_root(Arc::new(name.to_path_buf()), xml, base_dir.to_path_buf())
 }
 
@@ -119,6 +120,8 @@ impl Src<'_, '_> {
 struct Parser {
     params: Params,
     tree: RawTree,
+    /// The search folders: the scene's folder and the `<path>`s read so far.
+    resolver: FileResolver,
     /// The files being read, outermost first (to refuse include cycles).
     include_stack: Vec<PathBuf>,
 }
@@ -154,8 +157,13 @@ fn parse_version(s: &str) -> Option<[u32; 3]> {
 }
 
 impl Parser {
-    fn new(defines: &[(String, String)]) -> Self {
-        Parser { params: Params::new(defines), tree: RawTree::default(), include_stack: Vec::new() }
+    fn new(defines: &[(String, String)], scene_dir: &Path) -> Self {
+        Parser {
+            params: Params::new(defines),
+            tree: RawTree::default(),
+            resolver: FileResolver::new(scene_dir),
+            include_stack: Vec::new(),
+        }
     }
 
     /// Attributes of `el` with `$name` parameters substituted (longest names first, as
@@ -194,7 +202,7 @@ impl Parser {
         self.parse_children(&src, root, &mut b, 1)?;
         let idx = self.push(b, id, None, attrs.pos.clone());
         self.params.check_defines_used(&attrs)?;
-        std::mem::take(&mut self.tree).link(idx)
+        std::mem::take(&mut self.tree).link(idx, std::mem::take(&mut self.resolver))
     }
 
     /// Reads `version`; returns whether the document needs the pre-2.0 upgrade.
@@ -374,7 +382,10 @@ impl Parser {
                 self.tree.alias(alias, target, attrs.pos.clone());
                 Ok(())
             }
-            "path" => Err(attrs.error("<path> (extra search folders) is not supported yet")),
+            "path" => {
+                self.no_content(src, el, "<path>")?;
+                self.parse_path(src, &attrs, parent)
+            }
             "scene" => Err(attrs.error("<scene> can only be the root element")),
             _ => match ObjectTag::from_name(&tag) {
                 Some(t) => self.parse_object(src, el, &attrs, t, parent, depth),
@@ -438,7 +449,7 @@ impl Parser {
     ) -> Result<(), LoadError> {
         attrs.allow(&["filename"])?;
         let fname = &attrs.require("filename")?.value;
-        let path = src.dir.join(fname);
+        let path = self.resolver.resolve(fname, &src.dir);
         if !path.is_file() {
             return Err(attrs.error(format!("included file \"{}\" not found", path.display())));
         }
@@ -479,6 +490,31 @@ impl Parser {
         let r = self.parse_children(&isrc, root, parent, depth);
         self.include_stack.pop();
         r
+    }
+
+    /// `<path value="folder"/>`: a search folder for the files named after it and for the
+    /// plugins' files, searched before those already listed. Only at the scene's top level;
+    /// a relative folder is taken from the declaring file's folder, else from the search
+    /// folders; it must exist.
+    fn parse_path(&mut self, src: &Src, attrs: &Attrs, parent: &Builder) -> Result<(), LoadError> {
+        attrs.allow(&["value"])?;
+        let value = &attrs.require("value")?.value;
+        if parent.tag != ObjectTag::Scene {
+            return Err(attrs.error(format!(
+                "<path> can only be a child of the root <scene>, not of {}",
+                parent.desc
+            )));
+        }
+        let given = Path::new(value);
+        let mut dir = src.dir.join(given);
+        if !given.is_absolute() && !dir.exists() {
+            dir = self.resolver.resolve(value, &src.dir);
+        }
+        if !dir.is_dir() {
+            return Err(attrs.error(format!("<path>: folder \"{}\" not found", dir.display())));
+        }
+        self.resolver.prepend(dir);
+        Ok(())
     }
 
     fn parse_transform(

@@ -108,3 +108,21 @@ def test_exr_errors(tmp_path):
         steradian.write_exr(tmp_path / "x.exr", np.zeros((4, 4)))
     with pytest.raises(OSError):
         steradian.write_exr(tmp_path / "no" / "such" / "dir.exr", np.zeros((2, 2, 3)))
+
+
+def test_loader_warnings_are_user_warnings(tmp_path):
+    path = write(
+        tmp_path,
+        '<scene version="3.0.0">\n'
+        '  <integrator type="path"/>\n'
+        '  <sensor type="perspective"/>\n'
+        '  <shape type="sphere">\n'
+        '    <bsdf type="diffuse"><rgb name="reflectance" value="1.2"/></bsdf>\n'
+        "  </shape>\n"
+        "</scene>\n",
+        name="bright.xml",
+    )
+    with pytest.warns(UserWarning, match=r"bright\.xml:5:26: warning: .*above 1"):
+        steradian.load_file(path)
+    with pytest.raises(steradian.SceneError, match="non-negative"):
+        steradian.load_string(path.read_text().replace("1.2", "-0.2"))

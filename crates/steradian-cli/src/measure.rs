@@ -32,6 +32,9 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
     let defines = parse_defines(&args.defines)?;
     RenderOptions { spp: args.spp, threads: args.threads, ..Default::default() }.validate()?;
     let scene = steradian_mitsuba::load_file(&args.scene, &defines)?;
+    for w in &scene.warnings {
+        eprintln!("{w}");
+    }
     let sensor = match &args.sensor {
         Some(id) => scene.scene.find_sensor(id)?,
         None => 0,

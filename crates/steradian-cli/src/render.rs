@@ -152,6 +152,9 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             &defines,
         )?,
     };
+    for w in &scene.warnings {
+        eprintln!("{w}");
+    }
     let sensor = match &args.sensor {
         Some(id) => Some(scene.scene.find_sensor(id)?),
         None => None,

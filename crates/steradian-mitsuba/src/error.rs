@@ -1,4 +1,6 @@
-//! The one error type of the loader: a message plus the source position it is about.
+//! The loader's diagnostics: an error ([`LoadError`]) stops the load; a warning
+//! ([`LoadWarning`]) is a scene that loads but may not be what its author meant (a reflectance
+//! above 1 creates energy). Both are a message plus the source position they are about.
 
 use std::fmt;
 
@@ -39,6 +41,31 @@ impl fmt::Display for LoadError {
 
 impl std::error::Error for LoadError {}
 
+/// A scene that loads and renders as written, but probably not as meant.
+///
+/// Displays as `path:line:col: warning: message`. The loader collects them in
+/// [`Job::warnings`](steradian::render::Job::warnings) for front ends to print.
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadWarning {
+    /// Where the element or attribute starts.
+    pub pos: SourcePos,
+    /// What looks wrong, in plain words.
+    pub message: String,
+}
+
+impl LoadWarning {
+    /// A warning at `pos`.
+    pub fn at(pos: &SourcePos, message: impl Into<String>) -> Self {
+        LoadWarning { pos: pos.clone(), message: message.into() }
+    }
+}
+
+impl fmt::Display for LoadWarning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: warning: {}", self.pos, self.message)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use std::path::PathBuf;
@@ -52,5 +79,7 @@ mod tests {
         let e = LoadError::at(&pos, "unexpected tag <foo>");
         assert_eq!(e.to_string(), "a/b.xml:3:7: error: unexpected tag <foo>");
         assert_eq!(LoadError::new(None, "x").to_string(), "error: x");
+        let w = LoadWarning::at(&pos, "reflectance above 1");
+        assert_eq!(w.to_string(), "a/b.xml:3:7: warning: reflectance above 1");
     }
 }

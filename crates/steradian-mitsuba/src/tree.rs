@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 use crate::file_resolver::FileResolver;
 use crate::properties::Properties;
 use crate::source::SourcePos;
@@ -174,6 +174,8 @@ pub struct SceneNode {
     /// Where the plugins' relative file names are looked up (the scene's folder and its
     /// `<path>`s).
     pub resolver: FileResolver,
+    /// What the parser warned about (e.g. a `<rotate>` about a non-unit axis).
+    pub warnings: Vec<LoadWarning>,
 }
 
 impl std::ops::Deref for SceneNode {

@@ -83,7 +83,7 @@ fn uniform_scene(sky: &str) -> String {
 }
 
 const UNIFORM_ENVMAP: &str = r#"<emitter type="envmap"><string name="filename" value="envmap/uniform.exr"/>
-    <transform name="to_world"><rotate x="1" y="1" angle="50"/></transform></emitter>"#;
+    <transform name="to_world"><rotate x="0.70710678" y="0.70710678" angle="50"/></transform></emitter>"#;
 const UNIFORM_CONSTANT: &str =
     r#"<emitter type="constant"><rgb name="radiance" value="0.6, 0.8, 1.0"/></emitter>"#;
 

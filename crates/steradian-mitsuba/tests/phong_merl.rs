@@ -336,7 +336,7 @@ fn phong_parameter_errors() {
     // a negative specular reflectance: the error is at it, not at the diffuse one before it
     let bsdf = "<bsdf type=\"phong\">\n    <rgb name=\"diffuse_reflectance\" value=\"0.2\"/>\n    <rgb name=\"specular_reflectance\" value=\"0.1, -0.1, 0.1\"/>\n</bsdf>";
     let (p, e) = load_err("phong-negative-specular", bsdf, &[]);
-    check_error(&e, &p, 5, 5, &["diffuse_reflectance and specular_reflectance must be ≥ 0"]);
+    check_error(&e, &p, 5, 5, &["'specular_reflectance' must be finite and non-negative"]);
 
     let (p, e) = load_err(
         "phong-unknown",

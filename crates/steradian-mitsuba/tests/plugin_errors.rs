@@ -540,3 +540,52 @@ fn well_formed_scene_loads() {
     let xml = full_scene("<shape type=\"sphere\"/>\n<emitter type=\"constant\"/>");
     load_string(&xml, Path::new("bad.xml"), Path::new("."), &[]).unwrap();
 }
+
+// ---------------------------------------------------------------------------------------------
+// Physically impossible values
+
+/// Negative or overflowing (infinite once in single precision) reflectances, transmittances,
+/// conductor IORs and roughness are errors at the property; a reflectance above 1 loads, with a
+/// located warning.
+#[test]
+fn impossible_albedos_and_iors_are_errors_and_energy_gain_a_warning() {
+    let cases = [
+        (r#"<bsdf type="diffuse"><rgb name="reflectance" value="-1e30"/></bsdf>"#, "reflectance"),
+        (r#"<bsdf type="diffuse"><float name="reflectance" value="1e39"/></bsdf>"#, "reflectance"),
+        (
+            r#"<bsdf type="diffuse"><rgb name="reflectance" value="0.5, -0.1, 0.5"/></bsdf>"#,
+            "reflectance",
+        ),
+        (
+            r#"<bsdf type="dielectric"><float name="specular_transmittance" value="-1"/></bsdf>"#,
+            "specular_transmittance",
+        ),
+        (
+            r#"<bsdf type="plastic"><rgb name="diffuse_reflectance" value="-0.5"/></bsdf>"#,
+            "diffuse_reflectance",
+        ),
+        (
+            r#"<bsdf type="conductor"><rgb name="eta" value="-1"/><rgb name="k" value="1"/></bsdf>"#,
+            "eta",
+        ),
+        (r#"<bsdf type="roughconductor"><float name="alpha" value="1e39"/></bsdf>"#, "roughness"),
+        (
+            r#"<bsdf type="mask"><float name="opacity" value="-0.5"/><bsdf type="diffuse"/></bsdf>"#,
+            "opacity",
+        ),
+    ];
+    for (bsdf, needle) in cases {
+        let xml = full_scene(&format!("<shape type=\"sphere\">{bsdf}</shape>"));
+        let e = err(&xml);
+        // at the property element (the second tag), or at the BSDF for the roughness
+        let at = if needle == "roughness" { 0 } else { bsdf[1..].find('<').unwrap() + 1 };
+        check(&e, 4, (at + 22) as u32, &[needle]);
+    }
+    let xml = full_scene(
+        "<shape type=\"sphere\">\n<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"1.5, 0.5, 0.5\"/></bsdf></shape>",
+    );
+    let job = load_string(&xml, Path::new("bright.xml"), Path::new("."), &[]).unwrap();
+    assert_eq!(job.warnings.len(), 1, "{:?}", job.warnings);
+    let w = &job.warnings[0];
+    assert!(w.starts_with("bright.xml:5:22: warning: ") && w.contains("above 1"), "{w}");
+}

@@ -44,6 +44,7 @@ pub fn load_file(
     let scene = py
         .allow_threads(|| steradian_mitsuba::load_file(&path, &defines))
         .map_err(|e| scene_error(py, &e))?;
+    warn_all(py, &scene)?;
     Ok(Scene { inner: Arc::new(scene), name: path.display().to_string() })
 }
 
@@ -63,7 +64,17 @@ pub fn load_string(
             steradian_mitsuba::load_string(xml, Path::new("<string>"), Path::new("."), &defines)
         })
         .map_err(|e| scene_error(py, &e))?;
+    warn_all(py, &scene)?;
     Ok(Scene { inner: Arc::new(scene), name: "<string>".into() })
+}
+
+/// Issues the loader's warnings as Python `UserWarning`s (one each, with its location).
+fn warn_all(py: Python<'_>, job: &Job) -> PyResult<()> {
+    for w in &job.warnings {
+        let text = std::ffi::CString::new(w.as_str()).unwrap_or_default();
+        PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &text, 1)?;
+    }
+    Ok(())
 }
 
 /// A loaded scene: geometry, materials, lights, sensors and integrator. Immutable; safe to

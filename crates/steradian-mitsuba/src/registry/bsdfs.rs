@@ -15,7 +15,7 @@ use steradian::bsdf::{Merl, MerlTable, Phong};
 use steradian::texture::Texture;
 use steradian::Spectrum;
 
-use super::textures::{self, texture_param};
+use super::textures::{self, albedo_param, texture_param};
 use super::{at, at_param, lookup, Builder, Plugins};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
@@ -92,10 +92,24 @@ fn conductor_ior(node: &PluginNode) -> Result<(Spectrum, Spectrum), LoadError> {
         if material != "none" {
             return Err(at(node)("specify either (eta, k) or material, not both".into()));
         }
-        Ok((
-            spectrum(node, "eta", Conductor::DEFAULT_ETA)?,
-            spectrum(node, "k", Conductor::DEFAULT_K)?,
-        ))
+        let eta = spectrum(node, "eta", Conductor::DEFAULT_ETA)?;
+        let k = spectrum(node, "k", Conductor::DEFAULT_K)?;
+        for (name, v) in [("eta", eta), ("k", k)] {
+            if !(v.is_finite() && v.min_element() >= 0.0) {
+                let pos = p.position(name).unwrap_or(&node.pos);
+                return Err(LoadError::at(
+                    pos,
+                    format!(
+                        "{}: '{name}' must be finite and non-negative, got ({}, {}, {})",
+                        node.desc(),
+                        v.x,
+                        v.y,
+                        v.z
+                    ),
+                ));
+            }
+        }
+        Ok((eta, k))
     } else {
         conductor_preset(&material).map_err(at(node))
     }
@@ -152,9 +166,9 @@ fn microfacet(
         (Texture::Constant(u), Texture::Constant(v)) => {
             // a constant is read like Mitsuba's eval_1 of it (the channel mean)
             let (au, av) = (u.element_sum() / 3.0, v.element_sum() / 3.0);
-            if !(au >= 0.0 && av >= 0.0) {
+            if !(au >= 0.0 && av >= 0.0 && au.is_finite() && av.is_finite()) {
                 return Err(at(node)(format!(
-                    "roughness must be non-negative, got alpha_u = {au}, alpha_v = {av}"
+                    "roughness must be finite and non-negative, got alpha_u = {au}, alpha_v = {av}"
                 )));
             }
             Ok((MicrofacetDistribution::new(kind, au, av, sample_visible), None))
@@ -197,7 +211,7 @@ pub(crate) fn build(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 }
 
 fn diffuse(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
-    Ok(Bsdf::Diffuse(Diffuse::new(texture_param(
+    Ok(Bsdf::Diffuse(Diffuse::new(albedo_param(
         b,
         node,
         "reflectance",
@@ -229,7 +243,7 @@ fn conductor(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     Ok(Bsdf::Conductor(Conductor::new(
         eta,
         k,
-        texture_param(b, node, "specular_reflectance", specular)?,
+        albedo_param(b, node, "specular_reflectance", specular)?,
     )))
 }
 
@@ -238,7 +252,7 @@ fn roughconductor(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let (d, alpha) = microfacet(b, node, true)?;
     let specular = Some(Conductor::DEFAULT_SPECULAR_REFLECTANCE);
     let mut c =
-        RoughConductor::new(d, eta, k, texture_param(b, node, "specular_reflectance", specular)?);
+        RoughConductor::new(d, eta, k, albedo_param(b, node, "specular_reflectance", specular)?);
     if let Some((u, v)) = alpha {
         c = c.with_alpha_textures(u, v);
     }
@@ -248,13 +262,13 @@ fn roughconductor(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 /// The relative IOR and the specular reflectance and transmittance of the dielectrics.
 fn dielectric_params(b: &Builder, node: &PluginNode) -> Result<(f32, Texture, Texture), LoadError> {
     let eta = relative_ior(node)?;
-    let r = texture_param(
+    let r = albedo_param(
         b,
         node,
         "specular_reflectance",
         Some(Dielectric::DEFAULT_SPECULAR_REFLECTANCE),
     )?;
-    let t = texture_param(
+    let t = albedo_param(
         b,
         node,
         "specular_transmittance",
@@ -295,13 +309,9 @@ fn plastic_params(
     let eta = ior(node, "int_ior", Plastic::DEFAULT_INT_IOR)?
         / ior(node, "ext_ior", Plastic::DEFAULT_EXT_IOR)?;
     let diffuse =
-        texture_param(b, node, "diffuse_reflectance", Some(Plastic::DEFAULT_DIFFUSE_REFLECTANCE))?;
-    let specular = texture_param(
-        b,
-        node,
-        "specular_reflectance",
-        Some(Plastic::DEFAULT_SPECULAR_REFLECTANCE),
-    )?;
+        albedo_param(b, node, "diffuse_reflectance", Some(Plastic::DEFAULT_DIFFUSE_REFLECTANCE))?;
+    let specular =
+        albedo_param(b, node, "specular_reflectance", Some(Plastic::DEFAULT_SPECULAR_REFLECTANCE))?;
     let internal = if node.props.get_bool("nonlinear")?.unwrap_or(Plastic::DEFAULT_NONLINEAR) {
         InternalScattering::Nonlinear
     } else {
@@ -331,9 +341,9 @@ fn roughplastic(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 
 fn phong(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let diffuse =
-        texture_param(b, node, "diffuse_reflectance", Some(Phong::DEFAULT_DIFFUSE_REFLECTANCE))?;
+        albedo_param(b, node, "diffuse_reflectance", Some(Phong::DEFAULT_DIFFUSE_REFLECTANCE))?;
     let specular =
-        texture_param(b, node, "specular_reflectance", Some(Phong::DEFAULT_SPECULAR_REFLECTANCE))?;
+        albedo_param(b, node, "specular_reflectance", Some(Phong::DEFAULT_SPECULAR_REFLECTANCE))?;
     let exponent = node.props.get_float("exponent")?.unwrap_or(Phong::DEFAULT_EXPONENT);
     Phong::new(diffuse, specular, exponent).map(Bsdf::Phong).map_err(at_param(node))
 }
@@ -352,12 +362,12 @@ fn merl(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 }
 
 fn mask(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
-    let opacity = texture_param(b, node, "opacity", Some(Mask::DEFAULT_OPACITY))?;
+    let opacity = albedo_param(b, node, "opacity", Some(Mask::DEFAULT_OPACITY))?;
     Ok(Bsdf::Mask(Mask::new(opacity, one_nested(b, node)?)))
 }
 
 fn blendbsdf(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
-    let weight = texture_param(b, node, "weight", None)?;
+    let weight = albedo_param(b, node, "weight", None)?;
     match <[Bsdf; 2]>::try_from(nested_bsdfs(b, node)?) {
         Ok([b0, b1]) => Ok(Bsdf::BlendBsdf(BlendBsdf::new(weight, b0, b1))),
         Err(v) => Err(at(node)(format!("expects two nested BSDFs, got {}", v.len()))),

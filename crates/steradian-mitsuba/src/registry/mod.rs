@@ -15,6 +15,7 @@ pub(crate) mod sensors;
 mod shapes;
 mod textures;
 
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -24,7 +25,7 @@ use steradian::param::ParamError;
 use steradian::render::Job;
 use steradian::scene::{Scene, SceneDescription};
 
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 use crate::file_resolver::FileResolver;
 use crate::tree::{ObjectTag, PluginNode, SceneNode};
 
@@ -39,6 +40,8 @@ pub(crate) struct Builder {
     base_dir: PathBuf,
     /// The scene's search folders.
     resolver: FileResolver,
+    /// What the builders warned about so far (they see the builder by shared reference).
+    warnings: RefCell<Vec<LoadWarning>>,
 }
 
 impl Builder {
@@ -52,6 +55,11 @@ impl Builder {
             self.base_dir.clone()
         };
         self.resolver.resolve(file, &declared_in)
+    }
+
+    /// Records a warning for the front end (the scene still loads).
+    pub(crate) fn warn(&self, w: LoadWarning) {
+        self.warnings.borrow_mut().push(w);
     }
 
     fn add_bsdf(&mut self, bsdf: Bsdf) -> u32 {
@@ -201,6 +209,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
         black_bsdf: None,
         base_dir: base_dir.to_path_buf(),
         resolver: tree.resolver.clone(),
+        warnings: RefCell::new(tree.warnings.clone()),
     };
     let mut integrator_pos = None;
     let mut integrator = None;
@@ -262,7 +271,8 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
     };
     b.desc.light_selection = integrator.light_selection();
     let scene = Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))?;
-    Ok(Job { scene, integrator })
+    let warnings = b.warnings.into_inner().iter().map(ToString::to_string).collect();
+    Ok(Job { scene, integrator, warnings })
 }
 
 #[cfg(test)]

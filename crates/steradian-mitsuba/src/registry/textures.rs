@@ -8,7 +8,7 @@ use steradian::texture::{
 use steradian::Spectrum;
 
 use super::{lookup, Builder, Plugins};
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 use crate::tree::{ObjectTag, PluginNode};
 
 /// A parameter given as a value (`<rgb>`, `<spectrum>`, `<float>`) or as a nested
@@ -41,6 +41,47 @@ pub(crate) fn texture_param(
             format!("{}: missing parameter '{name}' (a value or a <texture>)", node.desc()),
         )),
     }
+}
+
+/// An albedo-like parameter (a reflectance or transmittance, a fraction of the light): a
+/// [`texture_param`] whose constant value must be finite and non-negative in every channel
+/// (an error at the property), and is warned about above 1, where the surface would create
+/// energy. Textures are taken as they are.
+pub(crate) fn albedo_param(
+    b: &Builder,
+    node: &PluginNode,
+    name: &str,
+    default: Option<f32>,
+) -> Result<Texture, LoadError> {
+    let t = texture_param(b, node, name, default)?;
+    if let (Texture::Constant(v), Some(pos)) = (&t, node.props.position(name)) {
+        if !(v.is_finite() && v.min_element() >= 0.0) {
+            return Err(LoadError::at(
+                pos,
+                format!(
+                    "{}: '{name}' must be finite and non-negative in every channel, got ({}, {}, {})",
+                    node.desc(),
+                    v.x,
+                    v.y,
+                    v.z
+                ),
+            ));
+        }
+        if v.max_element() > 1.0 {
+            b.warn(LoadWarning::at(
+                pos,
+                format!(
+                    "{}: '{name}' ({}, {}, {}) is above 1: the surface returns more light than \
+                     it receives",
+                    node.desc(),
+                    v.x,
+                    v.y,
+                    v.z
+                ),
+            ));
+        }
+    }
+    Ok(t)
 }
 
 /// `to_uv` as the affine map of texture coordinates.

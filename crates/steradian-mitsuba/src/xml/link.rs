@@ -8,7 +8,7 @@
 use std::collections::{BTreeMap, HashMap};
 use std::sync::Arc;
 
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 use crate::file_resolver::FileResolver;
 use crate::properties::Properties;
 use crate::source::SourcePos;
@@ -75,7 +75,12 @@ impl RawTree {
     }
 
     /// Links references and builds the shared tree under object `root`.
-    pub fn link(mut self, root: usize, resolver: FileResolver) -> Result<SceneNode, LoadError> {
+    pub fn link(
+        mut self,
+        root: usize,
+        resolver: FileResolver,
+        warnings: Vec<LoadWarning>,
+    ) -> Result<SceneNode, LoadError> {
         let mut built: Vec<Option<Arc<PluginNode>>> = vec![None; self.nodes.len()];
         let mut visiting = vec![false; self.nodes.len()];
         let root = self.build(root, None, &mut built, &mut visiting)?;
@@ -88,7 +93,7 @@ impl RawTree {
                 }
             }
         }
-        Ok(SceneNode { root, ids, resolver })
+        Ok(SceneNode { root, ids, resolver, warnings })
     }
 
     fn lookup(&self, id: &str, pos: Option<&SourcePos>) -> Result<usize, LoadError> {

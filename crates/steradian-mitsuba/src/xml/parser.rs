@@ -16,7 +16,7 @@ use super::attrs::{Attr, Attrs};
 use super::link::{RawChild, RawNode, RawTree};
 use super::params::Params;
 use super::{transform, values};
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 use crate::file_resolver::FileResolver;
 use crate::properties::{Properties, PropertyValue};
 use crate::source::SourcePos;
@@ -122,6 +122,7 @@ struct Parser {
     tree: RawTree,
     /// The search folders: the scene's folder and the `<path>`s read so far.
     resolver: FileResolver,
+    warnings: Vec<LoadWarning>,
     /// The files being read, outermost first (to refuse include cycles).
     include_stack: Vec<PathBuf>,
 }
@@ -162,6 +163,7 @@ impl Parser {
             params: Params::new(defines),
             tree: RawTree::default(),
             resolver: FileResolver::new(scene_dir),
+            warnings: Vec::new(),
             include_stack: Vec::new(),
         }
     }
@@ -202,7 +204,9 @@ impl Parser {
         self.parse_children(&src, root, &mut b, 1)?;
         let idx = self.push(b, id, None, attrs.pos.clone());
         self.params.check_defines_used(&attrs)?;
-        std::mem::take(&mut self.tree).link(idx, std::mem::take(&mut self.resolver))
+        let (resolver, warnings) =
+            (std::mem::take(&mut self.resolver), std::mem::take(&mut self.warnings));
+        std::mem::take(&mut self.tree).link(idx, resolver, warnings)
     }
 
     /// Reads `version`; returns whether the document needs the pre-2.0 upgrade.
@@ -552,7 +556,7 @@ impl Parser {
                 )));
             }
             self.no_content(src, ch, &format!("<{op}>"))?;
-            let t = transform::parse_op(&op, &oattrs)?;
+            let t = transform::parse_op(&op, &oattrs, &mut self.warnings)?;
             acc = acc.then(&t);
             if !acc.m.is_finite() || !acc.inv.is_finite() {
                 return Err(oattrs.error("the transform becomes degenerate (NaN or infinite) here"));

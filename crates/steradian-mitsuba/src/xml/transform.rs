@@ -4,15 +4,27 @@
 //! order, each one left-multiplied (`<scale/><rotate/><translate/>` gives T·R·S). Unlike
 //! Mitsuba, which lets NaN matrices and zero scales through, a degenerate operation is an
 //! error at its element.
+//!
+//! `<rotate>` uses its axis as written, as Mitsuba 3 does: Mitsuba builds the Rodrigues matrix
+//! cos θ·I + (1 − cos θ)·a aᵀ + sin θ·[a]ₓ from the unnormalised axis `a`, which is a rotation
+//! only when |a| = 1 (axis (1, 1, 0) at 30° also stretches and shears). steradian builds the
+//! same matrix, so such objects sit where Mitsuba puts them, and warns. Its inverse is the true
+//! inverse (Mitsuba stores the transpose, which is the inverse only for a rotation), so normals
+//! stay perpendicular to the stretched surfaces.
 
-use glam::Vec3;
+use glam::{Mat3, Mat4, Vec3};
 use steradian::geometry::{Transform, TransformError};
 
 use super::attrs::{tokenize, Attrs};
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 
-/// Parses one transform operation element (`op` is its tag name, after upgrade).
-pub(super) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> {
+/// Parses one transform operation element (`op` is its tag name, after upgrade); what looks
+/// unintended goes to `warnings`.
+pub(super) fn parse_op(
+    op: &str,
+    attrs: &Attrs,
+    warnings: &mut Vec<LoadWarning>,
+) -> Result<Transform, LoadError> {
     match op {
         "translate" => {
             attrs.allow(&["x", "y", "z", "value"])?;
@@ -37,7 +49,26 @@ pub(super) fn parse_op(op: &str, attrs: &Attrs) -> Result<Transform, LoadError> 
             if axis == Vec3::ZERO {
                 return Err(attrs.error("<rotate> needs a non-zero axis (set x, y or z)"));
             }
-            Transform::rotate(axis, angle as f32).map_err(|_| attrs.error("invalid <rotate>"))
+            // within rounding of a unit axis: the rotation itself (and images of scenes with
+            // axes such as (0.6, 0, 0.8) stay what they were)
+            if (axis.length() - 1.0).abs() < 1e-5 {
+                return Transform::rotate(axis, angle as f32)
+                    .map_err(|_| attrs.error("invalid <rotate>"));
+            }
+            warnings.push(LoadWarning::at(
+                &attrs.pos,
+                format!(
+                    "<rotate> axis ({}, {}, {}) has length {:.4}, not 1: Mitsuba 3 does not \
+                     normalise it, so this stretches and shears as well as rotates (steradian \
+                     does the same); normalise the axis for a pure rotation",
+                    axis.x,
+                    axis.y,
+                    axis.z,
+                    axis.length()
+                ),
+            ));
+            Transform::from_matrix(rodrigues(axis, angle as f32))
+                .map_err(|_| attrs.error("<rotate> about this axis is singular (not invertible)"))
         }
         "matrix" => {
             attrs.allow(&["value"])?;
@@ -121,6 +152,19 @@ fn xyz(attrs: &Attrs, default: f64) -> Result<Vec3, LoadError> {
     Ok(Vec3::new(out[0] as f32, out[1] as f32, out[2] as f32))
 }
 
+/// Mitsuba 3's rotation matrix about `axis` as given (unnormalised) by `angle_deg` degrees:
+/// cos θ·I + (1 − cos θ)·a aᵀ + sin θ·[a]ₓ.
+fn rodrigues(a: Vec3, angle_deg: f32) -> Mat4 {
+    let (sin, cos) = angle_deg.to_radians().sin_cos();
+    let c1 = 1.0 - cos;
+    let m = Mat3::from_cols(
+        Vec3::new(a.x * a.x * c1 + cos, a.x * a.y * c1 + a.z * sin, a.x * a.z * c1 - a.y * sin),
+        Vec3::new(a.x * a.y * c1 - a.z * sin, a.y * a.y * c1 + cos, a.y * a.z * c1 + a.x * sin),
+        Vec3::new(a.x * a.z * c1 + a.y * sin, a.y * a.z * c1 - a.x * sin, a.z * a.z * c1 + cos),
+    );
+    Mat4::from_mat3(m)
+}
+
 /// A required attribute of exactly 3 numbers (`origin="0, 0, 4"`).
 fn vec3_attr(attrs: &Attrs, name: &str) -> Result<Vec3, LoadError> {
     let a = attrs.require(name)?;
@@ -153,6 +197,23 @@ fn coordinate_system_first(n: Vec3) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Mitsuba 3.9.1's `ScalarTransform4f().rotate([1, 1, 0], 30).matrix`, row by row.
+    #[test]
+    fn unnormalised_axis_gives_mitsubas_matrix() {
+        let m = rodrigues(Vec3::new(1.0, 1.0, 0.0), 30.0);
+        let mitsuba = [[1.0, 0.133975, 0.5], [0.133975, 1.0, -0.5], [-0.5, 0.5, 0.866025]];
+        for (r, row) in mitsuba.iter().enumerate() {
+            for (c, want) in row.iter().enumerate() {
+                let got = m.col(c)[r];
+                assert!((got - want).abs() < 1e-6, "m[{r}][{c}] = {got}, Mitsuba {want}");
+            }
+        }
+        // a unit axis gives the rotation the normalised path builds
+        let axis = Vec3::new(0.6, 0.0, 0.8);
+        let r = Mat4::from_axis_angle(axis, 40f32.to_radians());
+        assert!(rodrigues(axis, 40.0).abs_diff_eq(r, 1e-6));
+    }
 
     #[test]
     fn coordinate_system_is_orthonormal() {

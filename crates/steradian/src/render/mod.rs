@@ -29,4 +29,7 @@ use crate::scene::Scene;
 pub struct Job {
     pub scene: Scene,
     pub integrator: Integrator,
+    /// What the scene's loader warned about, one located line each
+    /// (`scene.xml:3:7: warning: …`): the scene renders as written; front ends print them.
+    pub warnings: Vec<String>,
 }

@@ -1,9 +1,10 @@
 //! Sensor plugins (`perspective`, `thinlens`, `orthographic`, meters) with their film (`hdrfilm`), reconstruction
-//! filter (`box`, `tent`, `gaussian`) and sampler (`independent`, `stratified`,
+//! filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`).
 
 use steradian::film::{
-    BoxFilter, ComponentFormat, Film, GaussianFilter, ReconstructionFilter, TentFilter,
+    BoxFilter, CatmullRomFilter, ComponentFormat, Film, GaussianFilter, LanczosFilter,
+    MitchellFilter, ReconstructionFilter, TentFilter,
 };
 use steradian::geometry::Transform;
 use steradian::sampling::{Sampler, SamplerKind};
@@ -42,8 +43,14 @@ fn positive_int(node: &PluginNode, name: &str, default: i64) -> Result<u32, Load
 type BuildFilter = fn(&PluginNode) -> Result<ReconstructionFilter, LoadError>;
 
 /// Every reconstruction filter plugin, by Mitsuba `type`.
-pub(super) const FILTERS: &Plugins<BuildFilter> =
-    &[("box", box_filter), ("tent", tent_filter), ("gaussian", gaussian_filter)];
+pub(super) const FILTERS: &Plugins<BuildFilter> = &[
+    ("box", box_filter),
+    ("tent", tent_filter),
+    ("gaussian", gaussian_filter),
+    ("mitchell", mitchell_filter),
+    ("catmullrom", catmullrom_filter),
+    ("lanczos", lanczos_filter),
+];
 
 fn build_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
     let f = lookup(FILTERS, node)?(node)?;
@@ -63,6 +70,21 @@ fn tent_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
 fn gaussian_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
     let stddev = node.props.get_float("stddev")?.unwrap_or(GaussianFilter::DEFAULT_STDDEV);
     Ok(GaussianFilter::new(stddev).map_err(at(node))?.into())
+}
+
+fn mitchell_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
+    let b = node.props.get_float("B")?.unwrap_or(MitchellFilter::DEFAULT_B);
+    let c = node.props.get_float("C")?.unwrap_or(MitchellFilter::DEFAULT_C);
+    Ok(MitchellFilter::new(b, c).map_err(at(node))?.into())
+}
+
+fn catmullrom_filter(_: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
+    Ok(CatmullRomFilter::new().into())
+}
+
+fn lanczos_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
+    let lobes = node.props.get_int("lobes")?.unwrap_or(LanczosFilter::DEFAULT_LOBES);
+    Ok(LanczosFilter::new(lobes).map_err(at(node))?.into())
 }
 
 /// Builds one film from its node.

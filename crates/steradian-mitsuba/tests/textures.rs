@@ -478,3 +478,49 @@ fn dpdu_dpdv_match_mitsuba_and_finite_differences() {
     assert!((si.uv - Vec2::new(0.2, 0.3)).length() < 1e-6, "{}", si.uv);
     assert_eq!((si.dpdu, si.dpdv), (Vec3::new(2.0, 0.0, 0.0), Vec3::new(0.0, 1.0, 0.0)));
 }
+
+/// `rawconstant` is the constant it holds (a float or a 3-vector, as Mitsuba 3.9.1 takes it);
+/// `<rgb>`, a missing value and a negative reflectance are located errors.
+#[test]
+fn rawconstant_is_its_value() {
+    let raw = |value: &str| {
+        bsdf_of(&format!(
+            "<bsdf type=\"diffuse\"><texture type=\"rawconstant\" name=\"reflectance\">{value}</texture></bsdf>"
+        ))
+    };
+    let reflectance = |b: Bsdf| match b {
+        Bsdf::Diffuse(d) => d.reflectance,
+        other => panic!("{other:?}"),
+    };
+    assert_eq!(
+        reflectance(raw(r#"<vector name="value" value="0.2, 0.4, 0.6"/>"#)),
+        Texture::Constant(Spectrum::new(0.2, 0.4, 0.6))
+    );
+    assert_eq!(
+        reflectance(raw(r#"<float name="value" value="0.3"/>"#)),
+        Texture::Constant(Spectrum::splat(0.3))
+    );
+    let shape = "<shape type=\"rectangle\"><bsdf type=\"diffuse\">";
+    let col = (shape.len() + 1) as u32;
+    err(
+        "raw-rgb.xml",
+        &format!("{shape}<texture type=\"rawconstant\" name=\"reflectance\"><rgb name=\"value\" value=\"0.5\"/></texture></bsdf></shape>"),
+        4,
+        col + 47,
+        &["'value'", "float or a 3-vector"],
+    );
+    err(
+        "raw-missing.xml",
+        &format!("{shape}<texture type=\"rawconstant\" name=\"reflectance\"/></bsdf></shape>"),
+        4,
+        col,
+        &["missing parameter 'value'"],
+    );
+    err(
+        "raw-negative.xml",
+        &format!("{shape}<texture type=\"rawconstant\" name=\"reflectance\"><float name=\"value\" value=\"-0.5\"/></texture></bsdf></shape>"),
+        4,
+        col,
+        &["'reflectance' must be finite and non-negative"],
+    );
+}

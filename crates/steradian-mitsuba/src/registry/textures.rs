@@ -7,8 +7,9 @@ use steradian::texture::{
 };
 use steradian::Spectrum;
 
-use super::{lookup, Builder, Plugins};
+use super::{at, lookup, Builder, Plugins};
 use crate::error::{LoadError, LoadWarning};
+use crate::properties::PropertyValue;
 use crate::tree::{ObjectTag, PluginNode};
 
 /// A parameter given as a value (`<rgb>`, `<spectrum>`, `<float>`) or as a nested
@@ -54,7 +55,8 @@ pub(crate) fn albedo_param(
     default: Option<f32>,
 ) -> Result<Texture, LoadError> {
     let t = texture_param(b, node, name, default)?;
-    if let (Texture::Constant(v), Some(pos)) = (&t, node.props.position(name)) {
+    let pos = node.props.position(name).or_else(|| node.child(name).map(|c| c.pos()));
+    if let (Texture::Constant(v), Some(pos)) = (&t, pos) {
         if !(v.is_finite() && v.min_element() >= 0.0) {
             return Err(LoadError::at(
                 pos,
@@ -121,13 +123,38 @@ type BuildTexture = fn(&Builder, &PluginNode) -> Result<Texture, LoadError>;
 
 /// Every texture plugin, by Mitsuba `type`.
 pub(super) const TEXTURES: &Plugins<BuildTexture> =
-    &[("bitmap", bitmap), ("checkerboard", checkerboard)];
+    &[("bitmap", bitmap), ("checkerboard", checkerboard), ("rawconstant", rawconstant)];
 
 /// Builds a `<texture>` node.
 pub(crate) fn build(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
     let texture = lookup(TEXTURES, node)?(b, node)?;
     node.check_all_used()?;
     Ok(texture)
+}
+
+/// `rawconstant`: Mitsuba 3's constant that skips spectral conversion. Its `value` (required) is
+/// a `<float>` (all channels) or a 3-vector (`<vector>` or `<point>`; `<rgb>` is refused, as
+/// Mitsuba refuses it). steradian renders in RGB, where Mitsuba's RGB variants use the value as
+/// given too, so it is a constant texture.
+fn rawconstant(_: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
+    let p = &node.props;
+    let value = match p.get("value") {
+        None => return Err(at(node)("missing parameter 'value' (a float or a 3-vector)".into())),
+        Some(PropertyValue::Float(_)) => Spectrum::splat(p.get_float("value")?.unwrap_or(0.0)),
+        Some(PropertyValue::Vector(v) | PropertyValue::Point(v)) => Spectrum::from(*v),
+        Some(other) => {
+            let pos = p.position("value").unwrap_or(&node.pos);
+            return Err(LoadError::at(
+                pos,
+                format!(
+                    "{}: 'value' must be a float or a 3-vector (<vector>), got {}",
+                    node.desc(),
+                    other.type_name()
+                ),
+            ));
+        }
+    };
+    Ok(Texture::Constant(value))
 }
 
 fn bitmap(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {

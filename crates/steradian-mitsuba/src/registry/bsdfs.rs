@@ -1,6 +1,6 @@
 //! BSDF plugins: `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`,
 //! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `mask`, `blendbsdf`,
-//! `bumpmap`, `normalmap`, and steradian's own `phong` and `merl`. Parameters and defaults are
+//! `bumpmap`, `normalmap`, `null`, and steradian's own `phong` and `merl`. Parameters and defaults are
 //! Mitsuba 3's (see each plugin's documentation in `steradian::bsdf`). Reflectances and
 //! transmittances (`phong`'s too), `mask`'s `opacity` and `blendbsdf`'s `weight` take a value or
 //! a texture; IORs and roughness are values.
@@ -201,6 +201,7 @@ pub(super) const BSDFS: &Plugins<BuildBsdf> = &[
     ("blendbsdf", blendbsdf),
     ("bumpmap", bumpmap),
     ("normalmap", normalmap),
+    ("null", null),
 ];
 
 /// Builds a BSDF node (not cached: use `Builder::bsdf_index` for scene BSDFs).
@@ -217,6 +218,16 @@ fn diffuse(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
         "reflectance",
         Some(Diffuse::DEFAULT_REFLECTANCE),
     )?)))
+}
+
+/// `null` (no parameters): a surface that lets every ray through unchanged, Mitsuba's
+/// `BSDFFlags::Null` lobe alone. It is the fully transparent `mask` (opacity 0; the nested
+/// BSDF is never sampled), so it behaves as Mitsuba's `path` treats it: a crossing counts as a
+/// bounce, emitters seen through it take full weight, and shadow rays stop at it (`ray_test`
+/// finds null surfaces; only `volpath` traces through them).
+fn null(_: &Builder, _: &PluginNode) -> Result<Bsdf, LoadError> {
+    let black = Bsdf::Diffuse(Diffuse::new(Texture::Constant(Spectrum::ZERO)));
+    Ok(Bsdf::Mask(Mask::new(Texture::Constant(Spectrum::ZERO), black)))
 }
 
 fn twosided(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {

@@ -114,7 +114,6 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
             "hair",
             "measured",
             "measured_polarized",
-            "null",
             "polarizer",
             "pplastic",
             "principled",

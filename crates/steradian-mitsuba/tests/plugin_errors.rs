@@ -115,8 +115,8 @@ fn unknown_integrator_type() {
 
 #[test]
 fn unknown_rfilter_film_and_sampler_types() {
-    let xml = scene("<sensor type=\"perspective\">\n  <film type=\"hdrfilm\">\n    <rfilter type=\"lanczos\"/>\n  </film>\n</sensor>");
-    check(&err(&xml), 4, 5, &["unknown rfilter plugin type 'lanczos'", "gaussian"]);
+    let xml = scene("<sensor type=\"perspective\">\n  <film type=\"hdrfilm\">\n    <rfilter type=\"sinc\"/>\n  </film>\n</sensor>");
+    check(&err(&xml), 4, 5, &["unknown rfilter plugin type 'sinc'", "gaussian"]);
     let xml = scene("<sensor type=\"perspective\">\n  <sampler type=\"halton\"/>\n</sensor>");
     check(&err(&xml), 3, 3, &["unknown sampler plugin type 'halton'", "independent"]);
     let xml = scene("<sensor type=\"perspective\">\n  <film type=\"specfilm\"/>\n</sensor>");

@@ -38,6 +38,7 @@ pub fn render_error(e: RenderError) -> PyErr {
         RenderError::NoSensor
         | RenderError::BadSensor(_)
         | RenderError::NotACamera
+        | RenderError::NotLight
         | RenderError::BadOption { .. } => PyValueError::new_err(e.to_string()),
     }
 }

@@ -1,11 +1,11 @@
-//! Integrator plugins: `path`, `direct`.
+//! Integrator plugins: `path`, `direct`, `depth`.
 
 use steradian::emitter::LightSelection;
 use steradian::integrator::{
     parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility,
     DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
 };
-use steradian::integrator::{DirectIntegrator, Integrator, PathTracer};
+use steradian::integrator::{DepthIntegrator, DirectIntegrator, Integrator, PathTracer};
 
 use super::{at_param, lookup, Plugins};
 use crate::error::LoadError;
@@ -47,7 +47,8 @@ fn light_selection(node: &PluginNode) -> Result<LightSelection, LoadError> {
 type BuildIntegrator = fn(&PluginNode) -> Result<Integrator, LoadError>;
 
 /// Every integrator plugin, by Mitsuba `type`.
-pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> = &[("path", path), ("direct", direct)];
+pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> =
+    &[("path", path), ("direct", direct), ("depth", depth)];
 
 pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
     let integrator = lookup(INTEGRATORS, node)?(node)?;
@@ -98,4 +99,9 @@ fn direct(node: &PluginNode) -> Result<Integrator, LoadError> {
         emitters: visibility(node.props.get_bool("hide_emitters")?),
         light_selection: light_selection(node)?,
     }))
+}
+
+/// `depth` (no parameters): distance to the first hit (`steradian::integrator::DepthIntegrator`).
+fn depth(_: &PluginNode) -> Result<Integrator, LoadError> {
+    Ok(Integrator::Depth(DepthIntegrator))
 }

@@ -142,7 +142,6 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
         "integrator",
         &[
             "aov",
-            "depth",
             "moment",
             "ptracer",
             "stokes",

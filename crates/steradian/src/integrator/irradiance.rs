@@ -42,6 +42,8 @@ fn reflected_only(integrator: &Integrator) -> Option<Integrator> {
             d.emitters = EmitterVisibility::Hidden;
             Some(Integrator::Direct(d))
         }
+        // refused by the render plan (Integrator::estimates_light)
+        Integrator::Depth(_) => None,
     }
 }
 

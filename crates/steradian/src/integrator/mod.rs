@@ -3,12 +3,14 @@
 //! images.
 
 mod branching;
+mod depth;
 mod direct;
 mod irradiance;
 mod mis;
 mod path;
 
 pub use branching::{pilot, Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
+pub use depth::DepthIntegrator;
 pub use direct::DirectIntegrator;
 pub use irradiance::estimate_irradiance;
 pub use path::{
@@ -28,6 +30,7 @@ use crate::Spectrum;
 pub enum Integrator {
     Path(PathTracer),
     Direct(DirectIntegrator),
+    Depth(DepthIntegrator),
 }
 
 impl Integrator {
@@ -36,6 +39,7 @@ impl Integrator {
         match self {
             Integrator::Path(p) => p.light_selection,
             Integrator::Direct(d) => d.light_selection,
+            Integrator::Depth(_) => LightSelection::default(),
         }
     }
 
@@ -46,6 +50,13 @@ impl Integrator {
         match self {
             Integrator::Path(i) => i.li(scene, ray, sampler),
             Integrator::Direct(i) => i.li(scene, ray, sampler),
+            Integrator::Depth(i) => i.li(scene, ray),
         }
+    }
+
+    /// Whether its estimates are light (radiance): false for `depth`, whose values are
+    /// distances, so meters and irradiance maps refuse it.
+    pub fn estimates_light(&self) -> bool {
+        !matches!(self, Integrator::Depth(_))
     }
 }

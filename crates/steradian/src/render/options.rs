@@ -141,6 +141,8 @@ pub enum RenderError {
     BadSensor(usize),
     /// An irradiance map needs a camera.
     NotACamera,
+    /// Meters and irradiance maps need an integrator that estimates light (not `depth`).
+    NotLight,
     /// An option out of its range: the option's name and what it must be.
     BadOption {
         option: &'static str,
@@ -157,6 +159,10 @@ impl fmt::Display for RenderError {
             RenderError::NotACamera => write!(
                 f,
                 "irradiance maps need a camera sensor (perspective, thinlens or orthographic), not a meter"
+            ),
+            RenderError::NotLight => write!(
+                f,
+                "the depth integrator gives distances (m), not light: meters and irradiance maps need `path` or `direct`"
             ),
             RenderError::BadOption { option, reason } => write!(f, "{option} {reason}"),
             RenderError::ThreadPool(e) => write!(f, "could not start worker threads: {e}"),
@@ -194,6 +200,9 @@ impl<'a> Plan<'a> {
         let meter = sensor.is_meter();
         if opts.quantity.is_surface_map() && meter {
             return Err(RenderError::NotACamera);
+        }
+        if (opts.quantity.is_surface_map() || meter) && !job.integrator.estimates_light() {
+            return Err(RenderError::NotLight);
         }
         let mut sampler = sensor.sampler;
         if let Some(spp) = opts.spp {

@@ -121,7 +121,7 @@ fn point(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     Ok(Emitter::Point(PointLight::new(to_world.point(Vec3::ZERO), intensity)))
 }
 
-fn spot(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+fn spot(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
     let intensity =
         p.get_spectrum("intensity")?.unwrap_or(Spectrum::splat(SpotLight::DEFAULT_INTENSITY));
@@ -147,8 +147,12 @@ fn spot(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
         ));
     }
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
-    let spot = SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians())
+    let mut spot = SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians())
         .map_err(at_param(node))?;
+    if node.children.iter().any(|c| c.name.as_deref() == Some("texture")) {
+        spot =
+            spot.with_texture(&to_world, super::textures::texture_param(b, node, "texture", None)?);
+    }
     Ok(Emitter::Spot(spot))
 }
 

@@ -6,16 +6,22 @@
 //! | `cutoff_angle` | float    | 20                  | degrees: no light beyond it |
 //! | `beam_width`   | float    | 3/4 · cutoff_angle  | degrees: full intensity within it |
 //! | `to_world`     | transform| identity            | the light sits at the origin and shines along +z |
+//! | `texture`      | texture  | none                | a factor projected along the beam (e.g. a `bitmap` slide) |
 //!
-//! Intensity at angle θ from the axis: I·f(θ) with Mitsuba 3's fall-off f = 1 for
-//! θ ≤ beam_width, (cutoff − θ)/(cutoff − beam_width) up to the cutoff, 0 beyond.
+//! Intensity at angle θ from the axis: I·f(θ)·τ(uv) with Mitsuba 3's fall-off f = 1 for
+//! θ ≤ beam_width, (cutoff − θ)/(cutoff − beam_width) up to the cutoff, 0 beyond. With a
+//! `texture`, τ is read as Mitsuba reads it: the direction d in the light's frame (through the
+//! inverse of `to_world`, normalised) gives uv = ½ + ½·(d_x, d_y)/(d_z tan cutoff), so the image
+//! spans the square that circumscribes the cutoff cone at unit distance; without one, τ = 1.
+//! The flux used to choose among lights ignores τ (any positive choice is unbiased).
 
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 use super::{EmitterSample, Support};
 use crate::geometry::is_positive;
 use crate::geometry::{Frame, Transform};
 use crate::param::ParamError;
+use crate::texture::Texture;
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -30,6 +36,19 @@ pub struct SpotLight {
     pub beam_width: f32,
     cos_cutoff: f32,
     cos_beam_width: f32,
+    /// The projected texture, when the scene gives one (boxed: it is large, and untextured
+    /// spots keep the emitter enum small).
+    pub slide: Option<Box<Slide>>,
+}
+
+/// A texture projected along a spot light's beam.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Slide {
+    pub texture: Texture,
+    /// World → light frame (the inverse of `to_world`).
+    to_local: Transform,
+    /// tan(cutoff): the half-width of the image at unit distance along the axis.
+    uv_factor: f32,
 }
 
 impl SpotLight {
@@ -70,7 +89,36 @@ impl SpotLight {
             beam_width,
             cos_cutoff: cutoff.cos(),
             cos_beam_width: beam_width.cos(),
+            slide: None,
         })
+    }
+
+    /// The light with `texture` projected along its beam (`to_world` as given to [`new`]).
+    ///
+    /// [`new`]: SpotLight::new
+    pub fn with_texture(mut self, to_world: &Transform, texture: Texture) -> Self {
+        let to_local = to_world.inverse();
+        self.slide = Some(Box::new(Slide { texture, to_local, uv_factor: self.cutoff.tan() }));
+        self
+    }
+
+    /// The intensity (W/sr) leaving the light along the unit direction `d` (world space):
+    /// I·f(θ)·τ(uv).
+    #[inline]
+    pub fn intensity_towards(&self, d: Vec3) -> Spectrum {
+        let f = self.falloff(d);
+        if f <= 0.0 {
+            return Spectrum::ZERO;
+        }
+        let i = self.intensity * f;
+        match &self.slide {
+            None => i,
+            Some(slide) => {
+                let l = slide.to_local.vector(d).normalize();
+                let k = 0.5 / (l.z * slide.uv_factor);
+                i * slide.texture.eval(Vec2::new(0.5 + l.x * k, 0.5 + l.y * k))
+            }
+        }
     }
 
     /// The fall-off factor for a unit direction `d` leaving the light (world space).
@@ -109,16 +157,10 @@ impl SpotLight {
         }
         let dist = dist2.sqrt();
         let wi = d / dist;
-        let f = self.falloff(-wi);
-        if f <= 0.0 {
+        let i = self.intensity_towards(-wi);
+        if i == Spectrum::ZERO {
             return None;
         }
-        Some(EmitterSample {
-            wi,
-            dist,
-            pdf: 1.0,
-            weight: self.intensity * (f / dist2),
-            support: Support::Delta,
-        })
+        Some(EmitterSample { wi, dist, pdf: 1.0, weight: i / dist2, support: Support::Delta })
     }
 }

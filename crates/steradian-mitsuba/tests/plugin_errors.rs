@@ -66,7 +66,7 @@ fn unknown_bsdf_type() {
 #[test]
 fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
     for (tag, ty) in [
-        ("shape", "shapegroup"),
+        ("shape", "ellipsoids"),
         ("shape", "bsplinecurve"),
         ("emitter", "projector"),
         ("bsdf", "pplastic"),

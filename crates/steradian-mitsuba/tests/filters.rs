@@ -4,36 +4,20 @@
 //! evaluates the filters exactly), and the test tells the filters apart: the `gaussian` image
 //! fails against the `mitchell` reference.
 
-use std::path::PathBuf;
+mod common;
 
-use steradian::film::{read_exr, z_test, ZTest};
-use steradian::render::{render, RenderOptions};
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference").join(name)
-}
+use common::{reference_scene as data, z_test_against};
+use steradian::film::ZTest;
 
 const SPP: u32 = 64;
 
 /// The scene rendered with `filter`, Z-tested against the reference of `reference`.
 fn z(filter: &str, reference: &str) -> ZTest {
-    let job =
-        steradian_mitsuba::load_file(&data("filters.xml"), &[("filter".into(), filter.into())])
-            .unwrap_or_else(|e| panic!("{e}"));
-    let out = render(&job, &RenderOptions { spp: Some(SPP), seed: Some(1), ..Default::default() })
-        .unwrap();
-    assert_eq!(out.dropped_samples, 0);
-    let img = out.film.develop();
-    let mean = read_exr(&data(&format!("filters-{reference}-ref.exr"))).unwrap();
-    let var = read_exr(&data(&format!("filters-{reference}-var.exr"))).unwrap();
-    let z = z_test(&img, SPP, &mean, &var);
-    eprintln!(
-        "{filter} vs Mitsuba's {reference} @ {SPP} spp: {:.4} of {} pixels pass (min p {:.2e})",
-        z.pass_fraction(),
-        z.pixels,
-        z.min_p
-    );
-    z
+    let defines = [("filter".to_string(), filter.to_string())];
+    let job = steradian_mitsuba::load_file(&data("filters.xml"), &defines)
+        .unwrap_or_else(|e| panic!("{e}"));
+    let what = format!("{filter} vs Mitsuba's {reference}");
+    z_test_against(&job, SPP, &format!("filters-{reference}"), &what)
 }
 
 #[test]

@@ -3,32 +3,18 @@
 //! rays but stop shadow rays, and an emitter with a null BSDF shows its emission; the same
 //! scene with the null spheres made diffuse fails the test; `null` takes no parameters.
 
-use std::path::{Path, PathBuf};
+mod common;
 
-use steradian::film::{read_exr, z_test, ZTest};
-use steradian::render::{render, Job, RenderOptions};
+use std::path::Path;
 
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference").join(name)
-}
+use common::{reference_scene as data, z_test_against};
+use steradian::film::ZTest;
+use steradian::render::Job;
 
 const SPP: u32 = 64;
 
 fn z(job: &Job, what: &str) -> ZTest {
-    let out = render(job, &RenderOptions { spp: Some(SPP), seed: Some(1), ..Default::default() })
-        .unwrap();
-    assert_eq!(out.dropped_samples, 0);
-    let img = out.film.develop();
-    let mean = read_exr(&data("null-ref.exr")).unwrap();
-    let var = read_exr(&data("null-var.exr")).unwrap();
-    let z = z_test(&img, SPP, &mean, &var);
-    eprintln!(
-        "{what} @ {SPP} spp: {:.4} of {} pixels pass (min p {:.2e})",
-        z.pass_fraction(),
-        z.pixels,
-        z.min_p
-    );
-    z
+    z_test_against(job, SPP, "null", what)
 }
 
 #[test]

@@ -2,35 +2,19 @@
 //! sphere, a far clip that blacks out the back of the scene) renders as Mitsuba 3.9.1 renders
 //! it (Mitsuba's Z-test rule), and the loader refuses what the plugin does not read.
 
-use std::path::{Path, PathBuf};
+mod common;
 
-use steradian::film::{read_exr, z_test};
-use steradian::render::{render, RenderOptions};
+use std::path::Path;
+
+use common::reference_scene as data;
 use steradian_mitsuba::{load_file, load_string};
-
-fn data(name: &str) -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/reference").join(name)
-}
 
 /// Against Mitsuba at 4096 spp (64 passes for the variance), at 64 spp.
 #[test]
 fn orthographic_scene_matches_mitsuba() {
     const SPP: u32 = 64;
     let scene = load_file(&data("orthographic.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
-    let out =
-        render(&scene, &RenderOptions { spp: Some(SPP), seed: Some(1), ..Default::default() })
-            .unwrap();
-    assert_eq!(out.dropped_samples, 0);
-    let img = out.film.develop();
-    let reference = read_exr(&data("orthographic-ref.exr")).unwrap();
-    let variance = read_exr(&data("orthographic-var.exr")).unwrap();
-    let z = z_test(&img, SPP, &reference, &variance);
-    eprintln!(
-        "orthographic @ {SPP} spp: {:.4} of {} pixels pass (min p {:.2e})",
-        z.pass_fraction(),
-        z.pixels,
-        z.min_p
-    );
+    let z = common::z_test_against(&scene, SPP, "orthographic", "orthographic");
     assert!(z.passes(), "{:.4} of the pixels pass", z.pass_fraction());
 }
 

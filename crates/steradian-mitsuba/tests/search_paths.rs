@@ -10,8 +10,6 @@ use std::fs;
 use std::path::Path;
 
 use common::check_error;
-use steradian::film::{read_exr, z_test};
-use steradian::render::{render, RenderOptions};
 use steradian::testkit::{temp_dir, write_file};
 
 /// An OBJ of `n` triangles (told apart by their count once loaded).
@@ -128,18 +126,6 @@ fn search_scene_matches_mitsuba() {
     for (w, line) in job.warnings.iter().zip(["objects.xml:11:13", "objects.xml:23:13"]) {
         assert!(w.contains(line) && w.contains("not normalise"), "{w}");
     }
-    let out = render(&job, &RenderOptions { spp: Some(SPP), seed: Some(1), ..Default::default() })
-        .unwrap();
-    assert_eq!(out.dropped_samples, 0);
-    let img = out.film.develop();
-    let reference = read_exr(&dir.join("search-ref.exr")).unwrap();
-    let variance = read_exr(&dir.join("search-var.exr")).unwrap();
-    let z = z_test(&img, SPP, &reference, &variance);
-    eprintln!(
-        "search @ {SPP} spp: {:.4} of {} pixels pass (min p {:.2e})",
-        z.pass_fraction(),
-        z.pixels,
-        z.min_p
-    );
+    let z = common::z_test_against(&job, SPP, "search", "search");
     assert!(z.passes(), "{:.4} of the pixels pass", z.pass_fraction());
 }

@@ -7,6 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
+use steradian::film::{read_exr, z_test, ZTest};
 use steradian::render::Job;
 use steradian::render::{render, RenderOptions};
 use steradian::sampling::SamplerKind;
@@ -32,6 +33,26 @@ pub fn all_scenes() -> Vec<PathBuf> {
         .collect();
     v.sort();
     v
+}
+
+/// Mitsuba's render-test rule for `job` rendered at `spp` camera samples (seed 1) against
+/// `tests/reference/{reference}-ref.exr` and its per-sample variance `{reference}-var.exr`;
+/// prints the pass fraction under `what`. The render must drop no NaN/Inf sample.
+pub fn z_test_against(job: &Job, spp: u32, reference: &str, what: &str) -> ZTest {
+    let out = render(job, &RenderOptions { spp: Some(spp), seed: Some(1), ..Default::default() })
+        .unwrap_or_else(|e| panic!("{what}: {e}"));
+    assert_eq!(out.dropped_samples, 0, "{what}: NaN/Inf samples");
+    let img = out.film.develop();
+    let mean = read_exr(&reference_scene(&format!("{reference}-ref.exr"))).unwrap();
+    let var = read_exr(&reference_scene(&format!("{reference}-var.exr"))).unwrap();
+    let z = z_test(&img, spp, &mean, &var);
+    eprintln!(
+        "{what} @ {spp} spp: {:.4} of {} pixels pass (min p {:.2e})",
+        z.pass_fraction(),
+        z.pixels,
+        z.min_p
+    );
+    z
 }
 
 /// The error is at `file:line:col`, reads `file:line:col: error: message`, and its message

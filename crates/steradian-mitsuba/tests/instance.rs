@@ -28,6 +28,9 @@ fn instances_match_mitsuba() {
     // the members' BSDFs are built once and shared by the copies
     assert_eq!(job.scene.bsdfs.len(), 4, "{:?}", job.scene.bsdfs.len());
     assert!(z(&job, "instances").passes());
+    let mean_z = common::image_mean_z(&job, SPP, "instance", 4096);
+    eprintln!("instance image mean: z = {mean_z:.2}");
+    assert!(mean_z < 4.0, "image mean off by {mean_z:.2} standard errors");
 }
 
 /// The second instance translated before its rotation and scale: that copy moves.

@@ -22,6 +22,9 @@ fn null_scene_matches_mitsuba() {
     let job =
         steradian_mitsuba::load_file(&data("null.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
     assert!(z(&job, "null").passes());
+    let mean_z = common::image_mean_z(&job, SPP, "null", 4096);
+    eprintln!("null image mean: z = {mean_z:.2}");
+    assert!(mean_z < 4.0, "image mean off by {mean_z:.2} standard errors");
 }
 
 #[test]

@@ -69,7 +69,7 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
         ("shape", "ellipsoids"),
         ("shape", "bsplinecurve"),
         ("emitter", "projector"),
-        ("bsdf", "pplastic"),
+        ("bsdf", "hair"),
         ("bsdf", "polarizer"),
         ("integrator", "ptracer"),
         ("integrator", "aov"),

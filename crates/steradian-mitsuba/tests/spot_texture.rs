@@ -22,6 +22,9 @@ fn projected_texture_matches_mitsuba() {
     let job = steradian_mitsuba::load_file(&data("spot-texture.xml"), &[])
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(z(&job, "spot texture").passes());
+    let mean_z = common::image_mean_z(&job, SPP, "spot-texture", 4096);
+    eprintln!("spot-texture image mean: z = {mean_z:.2}");
+    assert!(mean_z < 4.0, "image mean off by {mean_z:.2} standard errors");
 }
 
 #[test]

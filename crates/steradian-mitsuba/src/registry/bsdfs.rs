@@ -1,6 +1,6 @@
 //! BSDF plugins: `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`,
 //! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `mask`, `blendbsdf`,
-//! `bumpmap`, `normalmap`, `null`, and steradian's own `phong` and `merl`. Parameters and defaults are
+//! `bumpmap`, `normalmap`, `null`, `pplastic`, and steradian's own `phong` and `merl`. Parameters and defaults are
 //! Mitsuba 3's (see each plugin's documentation in `steradian::bsdf`). Reflectances and
 //! transmittances (`phong`'s too), `mask`'s `opacity` and `blendbsdf`'s `weight` take a value or
 //! a texture; IORs and roughness are values.
@@ -8,8 +8,8 @@
 use steradian::bsdf::ior::{conductor_preset, lookup_ior};
 use steradian::bsdf::{
     BlendBsdf, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, InternalScattering, Mask,
-    MicrofacetDistribution, MicrofacetKind, NormalMap, PerturbOptions, Plastic, RoughConductor,
-    RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
+    MicrofacetDistribution, MicrofacetKind, NormalMap, PPlastic, PerturbOptions, Plastic,
+    RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
 use steradian::bsdf::{Merl, MerlTable, Phong};
 use steradian::texture::Texture;
@@ -202,6 +202,7 @@ pub(super) const BSDFS: &Plugins<BuildBsdf> = &[
     ("bumpmap", bumpmap),
     ("normalmap", normalmap),
     ("null", null),
+    ("pplastic", pplastic),
 ];
 
 /// Builds a BSDF node (not cached: use `Builder::bsdf_index` for scene BSDFs).
@@ -218,6 +219,26 @@ fn diffuse(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
         "reflectance",
         Some(Diffuse::DEFAULT_REFLECTANCE),
     )?)))
+}
+
+/// `pplastic` (its unpolarised form): roughness as numbers (anisotropic allowed), IORs,
+/// diffuse and specular reflectances (values or textures).
+fn pplastic(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let eta = ior(node, "int_ior", PPlastic::DEFAULT_INT_IOR)?
+        / ior(node, "ext_ior", PPlastic::DEFAULT_EXT_IOR)?;
+    if eta == 1.0 {
+        return Err(at(node)("the interior and exterior IORs must differ".into()));
+    }
+    let (d, _) = microfacet(b, node, false)?;
+    let diffuse =
+        albedo_param(b, node, "diffuse_reflectance", Some(PPlastic::DEFAULT_DIFFUSE_REFLECTANCE))?;
+    let specular = albedo_param(
+        b,
+        node,
+        "specular_reflectance",
+        Some(PPlastic::DEFAULT_SPECULAR_REFLECTANCE),
+    )?;
+    Ok(Bsdf::PPlastic(PPlastic::new(d, eta, diffuse, specular)))
 }
 
 /// `null` (no parameters): a surface that lets every ray through unchanged, Mitsuba's

@@ -115,7 +115,6 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
             "measured",
             "measured_polarized",
             "polarizer",
-            "pplastic",
             "principled",
             "principledthin",
             "retarder",

@@ -55,6 +55,31 @@ pub fn z_test_against(job: &Job, spp: u32, reference: &str, what: &str) -> ZTest
     z
 }
 
+/// The largest z-score over the RGB channels of the image mean of `job` at `spp` (seed 1)
+/// against the mean of `tests/reference/{reference}-ref.exr`, with the standard error from
+/// both: steradian's per-pixel standard errors and the reference's per-sample variance over
+/// its `ref_spp` samples (pixels independent: a box filter). Catches a bias too small for the
+/// per-pixel rule but spread over many pixels.
+pub fn image_mean_z(job: &Job, spp: u32, reference: &str, ref_spp: u32) -> f64 {
+    let out = render(job, &RenderOptions { spp: Some(spp), seed: Some(1), ..Default::default() })
+        .unwrap();
+    let (img, se) = (out.film.develop(), out.film.develop_stderr());
+    let mean = read_exr(&reference_scene(&format!("{reference}-ref.exr"))).unwrap();
+    let var = read_exr(&reference_scene(&format!("{reference}-var.exr"))).unwrap();
+    let n = (img.data.len() / 3) as f64;
+    (0..3)
+        .map(|c| {
+            fn channel(v: &[f32], c: usize, f: impl Fn(f64) -> f64) -> f64 {
+                v.iter().skip(c).step_by(3).map(|&x| f(x as f64)).sum()
+            }
+            let d = (channel(&img.data, c, |x| x) - channel(&mean.data, c, |x| x)) / n;
+            let var_ours = channel(&se.data, c, |s| s * s) / (n * n);
+            let var_ref = channel(&var.data, c, |x| x) / ref_spp as f64 / (n * n);
+            d.abs() / (var_ours + var_ref).sqrt()
+        })
+        .fold(0.0, f64::max)
+}
+
 /// The error is at `file:line:col`, reads `file:line:col: error: message`, and its message
 /// contains every needle.
 #[track_caller]

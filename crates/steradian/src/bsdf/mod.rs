@@ -20,6 +20,7 @@ mod normalmap;
 mod perturbed;
 mod phong;
 mod plastic;
+mod pplastic;
 mod roughconductor;
 mod roughdielectric;
 mod roughplastic;
@@ -38,6 +39,7 @@ pub use normalmap::NormalMap;
 pub use perturbed::PerturbOptions;
 pub use phong::Phong;
 pub use plastic::{InternalScattering, Plastic};
+pub use pplastic::PPlastic;
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
 pub use roughplastic::RoughPlastic;
@@ -118,6 +120,7 @@ pub enum Bsdf {
     RoughDielectric(RoughDielectric),
     Plastic(Plastic),
     RoughPlastic(RoughPlastic),
+    PPlastic(PPlastic),
     Phong(Phong),
     Merl(Merl),
     Mask(Mask),
@@ -139,6 +142,7 @@ macro_rules! dispatch {
             Bsdf::RoughDielectric($b) => $e,
             Bsdf::Plastic($b) => $e,
             Bsdf::RoughPlastic($b) => $e,
+            Bsdf::PPlastic($b) => $e,
             Bsdf::Phong($b) => $e,
             Bsdf::Merl($b) => $e,
             Bsdf::Mask($b) => $e,
@@ -187,7 +191,8 @@ impl Bsdf {
             | Bsdf::RoughConductor(_)
             | Bsdf::RoughDielectric(_)
             | Bsdf::Plastic(_)
-            | Bsdf::RoughPlastic(_) => true,
+            | Bsdf::RoughPlastic(_)
+            | Bsdf::PPlastic(_) => true,
             Bsdf::Phong(_) | Bsdf::Merl(_) => true,
             Bsdf::Conductor(_) | Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided(b) => b.has_smooth_lobe(),

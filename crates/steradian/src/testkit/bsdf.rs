@@ -128,6 +128,15 @@ fn assert_unit(wi: Vec3) {
     );
 }
 
+/// Helmholtz reciprocity, ρ(a, c) = ρ(c, a) to `rel` of ρ, for each pair of directions.
+pub fn assert_reciprocal(bsdf: &Bsdf, pairs: &[(Vec3, Vec3)], rel: f32) {
+    let s = sp();
+    for &(a, c) in pairs {
+        let (x, y) = (bsdf.eval(&s, a, c), bsdf.eval(&s, c, a));
+        assert!((x - y).abs().max_element() <= rel * x.max_element(), "{x:?} vs {y:?}");
+    }
+}
+
 /// Checks that a sample's weight equals eval·|cos|/pdf and its pdf equals `pdf()`.
 pub fn check_sample_consistency(bsdf: &Bsdf, wo: Vec3, seed: u64) {
     let mut rng = Pcg32::new(seed, 5);

@@ -16,7 +16,7 @@ use steradian::texture::Texture;
 use steradian::Spectrum;
 
 use super::textures::{self, albedo_param, texture_param};
-use super::{at, at_param, lookup, Builder, Plugins};
+use super::{at, at_param, check_non_negative, lookup, Builder, Plugins};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
 use crate::tree::{ObjectTag, PluginNode};
@@ -73,10 +73,17 @@ fn ior(node: &PluginNode, name: &str, default: &str) -> Result<f32, LoadError> {
     Ok(v)
 }
 
-/// int_ior/ext_ior of the dielectrics, with their defaults.
-fn relative_ior(node: &PluginNode) -> Result<f32, LoadError> {
-    Ok(ior(node, "int_ior", Dielectric::DEFAULT_INT_IOR)?
-        / ior(node, "ext_ior", Dielectric::DEFAULT_EXT_IOR)?)
+/// η = int_ior/ext_ior, with the plugin's defaults for the two.
+fn relative_ior(node: &PluginNode, int_default: &str, ext_default: &str) -> Result<f32, LoadError> {
+    Ok(ior(node, "int_ior", int_default)? / ior(node, "ext_ior", ext_default)?)
+}
+
+/// The rough interfaces (`roughdielectric`, `roughplastic`, `pplastic`) need a real one.
+fn distinct_iors(node: &PluginNode, eta: f32) -> Result<(), LoadError> {
+    if eta == 1.0 {
+        return Err(at(node)("the interior and exterior IORs must differ".into()));
+    }
+    Ok(())
 }
 
 /// A constant spectrum parameter with a default.
@@ -94,21 +101,8 @@ fn conductor_ior(node: &PluginNode) -> Result<(Spectrum, Spectrum), LoadError> {
         }
         let eta = spectrum(node, "eta", Conductor::DEFAULT_ETA)?;
         let k = spectrum(node, "k", Conductor::DEFAULT_K)?;
-        for (name, v) in [("eta", eta), ("k", k)] {
-            if !(v.is_finite() && v.min_element() >= 0.0) {
-                let pos = p.position(name).unwrap_or(&node.pos);
-                return Err(LoadError::at(
-                    pos,
-                    format!(
-                        "{}: '{name}' must be finite and non-negative, got ({}, {}, {})",
-                        node.desc(),
-                        v.x,
-                        v.y,
-                        v.z
-                    ),
-                ));
-            }
-        }
+        check_non_negative(node, "eta", eta)?;
+        check_non_negative(node, "k", k)?;
         Ok((eta, k))
     } else {
         conductor_preset(&material).map_err(at(node))
@@ -224,11 +218,8 @@ fn diffuse(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 /// `pplastic` (its unpolarised form): roughness as numbers (anisotropic allowed), IORs,
 /// diffuse and specular reflectances (values or textures).
 fn pplastic(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
-    let eta = ior(node, "int_ior", PPlastic::DEFAULT_INT_IOR)?
-        / ior(node, "ext_ior", PPlastic::DEFAULT_EXT_IOR)?;
-    if eta == 1.0 {
-        return Err(at(node)("the interior and exterior IORs must differ".into()));
-    }
+    let eta = relative_ior(node, PPlastic::DEFAULT_INT_IOR, PPlastic::DEFAULT_EXT_IOR)?;
+    distinct_iors(node, eta)?;
     let (d, _) = microfacet(b, node, false)?;
     let diffuse =
         albedo_param(b, node, "diffuse_reflectance", Some(PPlastic::DEFAULT_DIFFUSE_REFLECTANCE))?;
@@ -293,7 +284,7 @@ fn roughconductor(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 
 /// The relative IOR and the specular reflectance and transmittance of the dielectrics.
 fn dielectric_params(b: &Builder, node: &PluginNode) -> Result<(f32, Texture, Texture), LoadError> {
-    let eta = relative_ior(node)?;
+    let eta = relative_ior(node, Dielectric::DEFAULT_INT_IOR, Dielectric::DEFAULT_EXT_IOR)?;
     let r = albedo_param(
         b,
         node,
@@ -321,9 +312,7 @@ fn thindielectric(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 
 fn roughdielectric(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let (eta, r, t) = dielectric_params(b, node)?;
-    if eta == 1.0 {
-        return Err(at(node)("the interior and exterior IORs must differ".into()));
-    }
+    distinct_iors(node, eta)?;
     let (d, alpha) = microfacet(b, node, true)?;
     let mut rd = RoughDielectric::new(d, eta, r, t);
     if let Some((u, v)) = alpha {
@@ -338,8 +327,7 @@ fn plastic_params(
     b: &Builder,
     node: &PluginNode,
 ) -> Result<(f32, Texture, Texture, InternalScattering), LoadError> {
-    let eta = ior(node, "int_ior", Plastic::DEFAULT_INT_IOR)?
-        / ior(node, "ext_ior", Plastic::DEFAULT_EXT_IOR)?;
+    let eta = relative_ior(node, Plastic::DEFAULT_INT_IOR, Plastic::DEFAULT_EXT_IOR)?;
     let diffuse =
         albedo_param(b, node, "diffuse_reflectance", Some(Plastic::DEFAULT_DIFFUSE_REFLECTANCE))?;
     let specular =
@@ -359,9 +347,7 @@ fn plastic(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 
 fn roughplastic(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let (eta, diffuse, specular, internal) = plastic_params(b, node)?;
-    if eta == 1.0 {
-        return Err(at(node)("the interior and exterior IORs must differ".into()));
-    }
+    distinct_iors(node, eta)?;
     let (d, _) = microfacet(b, node, false)?;
     if !d.is_isotropic() {
         return Err(at(node)(

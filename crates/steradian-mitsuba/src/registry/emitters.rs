@@ -8,7 +8,7 @@ use steradian::emitter::{
 use steradian::geometry::Transform;
 use steradian::{Spectrum, Vec3};
 
-use super::{at, at_param, lookup, Plugins};
+use super::{at, at_param, check_non_negative, lookup, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
@@ -31,17 +31,6 @@ pub(crate) fn build_area(
     }
     node.check_all_used()?;
     Ok(Emitter::Area(AreaLight::new(shape, radiance)))
-}
-
-fn check_non_negative(node: &PluginNode, name: &str, v: Spectrum) -> Result<(), LoadError> {
-    if !v.is_finite() || v.min_element() < 0.0 {
-        let pos = node.props.position(name).unwrap_or(&node.pos);
-        return Err(LoadError::at(
-            pos,
-            format!("{}: '{name}' must be finite and non-negative, got {v}", node.desc()),
-        ));
-    }
-    Ok(())
 }
 
 /// A position given either as `position` or as the translation of `to_world`, not both.

@@ -171,6 +171,27 @@ pub(crate) fn at(node: &PluginNode) -> impl Fn(String) -> LoadError + '_ {
     move |msg| LoadError::at(&node.pos, format!("{}: {msg}", node.desc()))
 }
 
+/// Errors unless every channel of parameter `name`'s value `v` is finite and non-negative,
+/// at the property (or the `<texture>` child) that gives it, else at `node`.
+pub(crate) fn check_non_negative(
+    node: &PluginNode,
+    name: &str,
+    v: steradian::Spectrum,
+) -> Result<(), LoadError> {
+    if v.is_finite() && v.min_element() >= 0.0 {
+        return Ok(());
+    }
+    let pos = node
+        .props
+        .position(name)
+        .or_else(|| node.child(name).map(|c| c.pos()))
+        .unwrap_or(&node.pos);
+    Err(LoadError::at(
+        pos,
+        format!("{}: '{name}' must be finite and non-negative, got {v}", node.desc()),
+    ))
+}
+
 /// Converts a core-library parameter error into a loader error at the property it names:
 /// `param` where `node` gives it, else the related parameter where `node` gives that (the
 /// one the scene set when it left `param` at its default), else `node` itself.

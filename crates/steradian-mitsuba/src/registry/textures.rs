@@ -7,7 +7,7 @@ use steradian::texture::{
 };
 use steradian::Spectrum;
 
-use super::{at, lookup, Builder, Plugins};
+use super::{at, check_non_negative, lookup, Builder, Plugins};
 use crate::error::{LoadError, LoadWarning};
 use crate::properties::PropertyValue;
 use crate::tree::{ObjectTag, PluginNode};
@@ -55,30 +55,15 @@ pub(crate) fn albedo_param(
     default: Option<f32>,
 ) -> Result<Texture, LoadError> {
     let t = texture_param(b, node, name, default)?;
-    let pos = node.props.position(name).or_else(|| node.child(name).map(|c| c.pos()));
-    if let (Texture::Constant(v), Some(pos)) = (&t, pos) {
-        if !(v.is_finite() && v.min_element() >= 0.0) {
-            return Err(LoadError::at(
-                pos,
-                format!(
-                    "{}: '{name}' must be finite and non-negative in every channel, got ({}, {}, {})",
-                    node.desc(),
-                    v.x,
-                    v.y,
-                    v.z
-                ),
-            ));
-        }
+    if let Texture::Constant(v) = &t {
+        check_non_negative(node, name, *v)?;
         if v.max_element() > 1.0 {
+            let pos = node.props.position(name).or_else(|| node.child(name).map(|c| c.pos()));
             b.warn(LoadWarning::at(
-                pos,
+                pos.unwrap_or(&node.pos),
                 format!(
-                    "{}: '{name}' ({}, {}, {}) is above 1: the surface returns more light than \
-                     it receives",
-                    node.desc(),
-                    v.x,
-                    v.y,
-                    v.z
+                    "{}: '{name}' {v} is above 1: the surface returns more light than it receives",
+                    node.desc()
                 ),
             ));
         }
@@ -140,7 +125,7 @@ fn rawconstant(_: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
     let p = &node.props;
     let value = match p.get("value") {
         None => return Err(at(node)("missing parameter 'value' (a float or a 3-vector)".into())),
-        Some(PropertyValue::Float(_)) => Spectrum::splat(p.get_float("value")?.unwrap_or(0.0)),
+        Some(PropertyValue::Float(f)) => Spectrum::splat(*f as f32),
         Some(PropertyValue::Vector(v) | PropertyValue::Point(v)) => Spectrum::from(*v),
         Some(other) => {
             let pos = p.position("value").unwrap_or(&node.pos);

@@ -139,6 +139,21 @@ impl MicrofacetDistribution {
         }
     }
 
+    /// Density (1/sr) of `wi` = `wo` reflected about a normal drawn by [`sample`](Self::sample)
+    /// for `wo` (above the surface), `h` = their half vector: pdf(wo, h)/(4 wi·h), in the
+    /// visible-normal case written D(h) G1(wo, h)/(4 cos θo); 0 where `wo` or `wi` lies behind
+    /// the microfacet.
+    #[inline]
+    pub fn reflection_pdf(&self, wo: Vec3, wi: Vec3, h: Vec3) -> f32 {
+        if wo.dot(h) <= 0.0 || wi.dot(h) <= 0.0 {
+            0.0
+        } else if self.sample_visible {
+            self.d(h) * self.g1(wo, h) / (4.0 * wo.z)
+        } else {
+            self.pdf(wo, h) / (4.0 * wi.dot(h))
+        }
+    }
+
     /// Draws a microfacet normal m for viewing direction `v` (above the surface) and returns
     /// it with its density `pdf(v, m)`.
     pub fn sample(&self, v: Vec3, u: Vec2) -> (Vec3, f32) {

@@ -85,19 +85,10 @@ impl PPlastic {
 
     #[inline]
     pub fn pdf(&self, _sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
-        let (cos_o, cos_i) = (cos_theta(wo), cos_theta(wi));
-        if cos_o <= 0.0 || cos_i <= 0.0 {
+        if cos_theta(wo) <= 0.0 || cos_theta(wi) <= 0.0 {
             return 0.0;
         }
-        let h = (wo + wi).normalize();
-        let distr = &self.distribution;
-        let specular = if wo.dot(h) <= 0.0 || wi.dot(h) <= 0.0 {
-            0.0
-        } else if distr.sample_visible {
-            distr.d(h) * distr.g1(wo, h) / (4.0 * cos_o)
-        } else {
-            distr.pdf(wo, h) / (4.0 * wi.dot(h))
-        };
+        let specular = self.distribution.reflection_pdf(wo, wi, (wo + wi).normalize());
         let p = self.specular_weight;
         p * specular + (1.0 - p) * warp::square_to_cosine_hemisphere_pdf(wi)
     }

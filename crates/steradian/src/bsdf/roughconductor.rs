@@ -85,16 +85,7 @@ impl RoughConductor {
         if wo.z <= 0.0 || wi.z <= 0.0 {
             return 0.0;
         }
-        let h = (wo + wi).normalize();
-        if wo.dot(h) <= 0.0 || wi.dot(h) <= 0.0 {
-            return 0.0;
-        }
-        let distr = &self.distribution_at(sp);
-        if distr.sample_visible {
-            distr.d(h) * distr.g1(wo, h) / (4.0 * wo.z)
-        } else {
-            distr.pdf(wo, h) / (4.0 * wi.dot(h))
-        }
+        self.distribution_at(sp).reflection_pdf(wo, wi, (wo + wi).normalize())
     }
 
     #[inline]

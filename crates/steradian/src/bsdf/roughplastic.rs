@@ -124,13 +124,7 @@ impl RoughPlastic {
             return 0.0;
         }
         let p_specular = self.p_specular(wo);
-        let h = (wo + wi).normalize();
-        let distr = &self.distribution;
-        let glossy = if distr.sample_visible {
-            distr.d(h) * distr.g1(wo, h) / (4.0 * cos_o)
-        } else {
-            distr.pdf(wo, h) / (4.0 * wi.dot(h))
-        };
+        let glossy = self.distribution.reflection_pdf(wo, wi, (wo + wi).normalize());
         p_specular * glossy + (1.0 - p_specular) * warp::square_to_cosine_hemisphere_pdf(wi)
     }
 

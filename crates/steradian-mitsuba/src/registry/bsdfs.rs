@@ -1,14 +1,16 @@
 //! BSDF plugins: `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`,
 //! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `mask`, `blendbsdf`,
-//! `bumpmap`, `normalmap`, `null`, `pplastic`, and steradian's own `phong` and `merl`. Parameters and defaults are
-//! Mitsuba 3's (see each plugin's documentation in `steradian::bsdf`). Reflectances and
-//! transmittances (`phong`'s too), `mask`'s `opacity` and `blendbsdf`'s `weight` take a value or
-//! a texture; IORs and roughness are values.
+//! `bumpmap`, `normalmap`, `null`, `pplastic`, `principled`, `principledthin`, and steradian's
+//! own `phong` and `merl`. Parameters and defaults are Mitsuba 3's (see each plugin's
+//! documentation in `steradian::bsdf`). Reflectances and transmittances (`phong`'s too),
+//! `mask`'s `opacity`, `blendbsdf`'s `weight` and the principled materials' parameters take a
+//! value or a texture; IORs and roughness are values (textures where Mitsuba allows them).
 
 use steradian::bsdf::ior::{conductor_preset, lookup_ior};
 use steradian::bsdf::{
     BlendBsdf, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, InternalScattering, Mask,
     MicrofacetDistribution, MicrofacetKind, NormalMap, PPlastic, PerturbOptions, Plastic,
+    Principled, PrincipledSamplingRates, PrincipledThin, PrincipledThinSamplingRates,
     RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
 };
 use steradian::bsdf::{Merl, MerlTable, Phong};
@@ -197,6 +199,8 @@ pub(super) const BSDFS: &Plugins<BuildBsdf> = &[
     ("normalmap", normalmap),
     ("null", null),
     ("pplastic", pplastic),
+    ("principled", principled),
+    ("principledthin", principledthin),
 ];
 
 /// Builds a BSDF node (not cached: use `Builder::bsdf_index` for scene BSDFs).
@@ -230,6 +234,130 @@ fn pplastic(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
         Some(PPlastic::DEFAULT_SPECULAR_REFLECTANCE),
     )?;
     Ok(Bsdf::PPlastic(PPlastic::new(d, eta, diffuse, specular)))
+}
+
+/// A non-negative weight of a principled material (a value or a texture; constants checked).
+fn weight_param(
+    b: &Builder,
+    node: &PluginNode,
+    name: &str,
+    default: f32,
+) -> Result<Texture, LoadError> {
+    let t = texture_param(b, node, name, Some(default))?;
+    if let Texture::Constant(v) = &t {
+        check_non_negative(node, name, *v)?;
+    }
+    Ok(t)
+}
+
+/// A finite, non-negative float (a sampling rate), `default` when absent.
+fn rate(node: &PluginNode, name: &str, default: f32) -> Result<f32, LoadError> {
+    let v = node.props.get_float(name)?.unwrap_or(default);
+    check_non_negative(node, name, Spectrum::splat(v))?;
+    Ok(v)
+}
+
+/// Whether a principled lobe is switched on, Mitsuba's test: the parameter is given, and not
+/// as the number 0 (a texture always switches it on).
+fn lobe_given(node: &PluginNode, name: &str) -> bool {
+    match node.props.get(name) {
+        Some(PropertyValue::Float(f)) => *f != 0.0,
+        Some(PropertyValue::Int(i)) => *i != 0,
+        Some(_) => true,
+        None => node.child(name).is_some(),
+    }
+}
+
+/// `principled`: every weight a value or a texture; `eta` or `specular` (not both) sets the
+/// dielectric's IOR, nudged off 1 (η 1.001, specular 0.001) when there is a transmission,
+/// as Mitsuba does.
+fn principled(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let w = |name| weight_param(b, node, name, Principled::DEFAULT_WEIGHT);
+    let mut p = Principled::new();
+    p.base_color = albedo_param(b, node, "base_color", Some(Principled::DEFAULT_BASE_COLOR))?;
+    p.roughness = weight_param(b, node, "roughness", Principled::DEFAULT_ROUGHNESS)?;
+    p.anisotropic = w("anisotropic")?;
+    p.metallic = w("metallic")?;
+    p.spec_trans = w("spec_trans")?;
+    p.spec_tint = w("spec_tint")?;
+    p.sheen = w("sheen")?;
+    p.sheen_tint = w("sheen_tint")?;
+    p.flatness = w("flatness")?;
+    p.clearcoat = w("clearcoat")?;
+    p.clearcoat_gloss = w("clearcoat_gloss")?;
+    let transmits = lobe_given(node, "spec_trans");
+    let props = &node.props;
+    p.eta = match (props.get_float("eta")?, props.get_float("specular")?) {
+        (Some(_), Some(_)) => {
+            return Err(at(node)("give either 'eta' or 'specular', not both".into()));
+        }
+        (Some(eta), None) => {
+            if !(eta > 0.0 && eta.is_finite()) {
+                return Err(LoadError::at(
+                    props.position("eta").unwrap_or(&node.pos),
+                    format!("{}: eta must be positive, got {eta}", node.desc()),
+                ));
+            }
+            if transmits && eta == 1.0 {
+                1.001
+            } else {
+                eta
+            }
+        }
+        (None, s) => {
+            let s = s.unwrap_or(Principled::DEFAULT_SPECULAR);
+            if !(0.0..12.5).contains(&s) {
+                return Err(LoadError::at(
+                    props.position("specular").unwrap_or(&node.pos),
+                    format!("{}: specular must lie in [0, 12.5), got {s}", node.desc()),
+                ));
+            }
+            Principled::eta_from_specular(if transmits && s == 0.0 { 1e-3 } else { s })
+        }
+    };
+    let d = Principled::DEFAULT_SAMPLING_RATES;
+    p.rates = PrincipledSamplingRates {
+        diffuse: rate(node, "diffuse_reflectance_sampling_rate", d.diffuse)?,
+        specular: rate(node, "main_specular_sampling_rate", d.specular)?,
+        clearcoat: rate(node, "clearcoat_sampling_rate", d.clearcoat)?,
+    };
+    Ok(Bsdf::Principled(p))
+}
+
+/// `principledthin`: every weight and `eta` a value or a texture.
+fn principledthin(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let w = |name| weight_param(b, node, name, PrincipledThin::DEFAULT_WEIGHT);
+    let mut p = PrincipledThin::new();
+    p.base_color = albedo_param(b, node, "base_color", Some(PrincipledThin::DEFAULT_BASE_COLOR))?;
+    p.roughness = weight_param(b, node, "roughness", PrincipledThin::DEFAULT_ROUGHNESS)?;
+    p.anisotropic = w("anisotropic")?;
+    p.spec_trans = w("spec_trans")?;
+    p.eta = weight_param(b, node, "eta", PrincipledThin::DEFAULT_ETA)?;
+    p.spec_tint = w("spec_tint")?;
+    p.diff_trans = w("diff_trans")?;
+    p.sheen = w("sheen")?;
+    p.sheen_tint = w("sheen_tint")?;
+    p.flatness = w("flatness")?;
+    let d = PrincipledThin::DEFAULT_SAMPLING_RATES;
+    p.rates = PrincipledThinSamplingRates {
+        specular_reflection: rate(
+            node,
+            "specular_reflectance_sampling_rate",
+            d.specular_reflection,
+        )?,
+        specular_transmission: rate(
+            node,
+            "specular_transmittance_sampling_rate",
+            d.specular_transmission,
+        )?,
+        diffuse_reflection: rate(node, "diffuse_reflectance_sampling_rate", d.diffuse_reflection)?,
+        diffuse_transmission: rate(
+            node,
+            "diffuse_transmittance_sampling_rate",
+            d.diffuse_transmission,
+        )?,
+    };
+    Ok(Bsdf::PrincipledThin(p))
 }
 
 /// `null` (no parameters): a surface that lets every ray through unchanged, Mitsuba's
@@ -435,6 +563,41 @@ mod tests {
         let v = load(bsdf_xml).unwrap();
         assert_eq!(v.len(), 1);
         v.into_iter().next().unwrap()
+    }
+
+    #[test]
+    fn principled_parameters() {
+        use steradian::bsdf::{Principled, PrincipledThin};
+        let Bsdf::Principled(p) = one(r#"<bsdf type="principled"/>"#) else { panic!() };
+        assert_eq!(p, Principled::new());
+        assert_eq!(p.eta, 1.5);
+        let Bsdf::Principled(p) =
+            one(r#"<bsdf type="principled"><float name="specular" value="0"/></bsdf>"#)
+        else {
+            panic!()
+        };
+        assert_eq!(p.eta, 1.0, "no transmission: specular 0 stays η 1");
+        // a transmission moves η and specular off 1 and 0 (to 1.001 and 0.001: η 1.018), as
+        // Mitsuba does
+        for x in [r#"<float name="eta" value="1"/>"#, r#"<float name="specular" value="0"/>"#] {
+            let xml = format!(
+                r#"<bsdf type="principled"><float name="spec_trans" value="0.5"/>{x}</bsdf>"#
+            );
+            let Bsdf::Principled(p) = one(&xml) else { panic!() };
+            assert!(p.eta > 1.0 && p.eta < 1.02, "{x}: η {}", p.eta);
+        }
+        let Bsdf::PrincipledThin(t) = one(r#"<bsdf type="principledthin"/>"#) else { panic!() };
+        assert_eq!(t, PrincipledThin::new());
+        for bad in [
+            r#"<bsdf type="principled"><float name="roughness" value="-0.1"/></bsdf>"#,
+            r#"<bsdf type="principled"><float name="specular" value="20"/></bsdf>"#,
+            r#"<bsdf type="principled"><float name="clearcoat_sampling_rate" value="-1"/></bsdf>"#,
+            r#"<bsdf type="principledthin"><float name="diff_trans" value="-2"/></bsdf>"#,
+            r#"<bsdf type="principledthin"><float name="alpha" value="0.2"/></bsdf>"#,
+        ] {
+            let e = load(bad).unwrap_err();
+            assert!(e.contains("t.xml:1:"), "{bad}: {e}");
+        }
     }
 
     #[test]

@@ -11,6 +11,7 @@ mod bumpmap;
 mod conductor;
 mod dielectric;
 mod diffuse;
+mod disney;
 pub mod fresnel;
 pub mod ior;
 mod mask;
@@ -21,6 +22,8 @@ mod perturbed;
 mod phong;
 mod plastic;
 mod pplastic;
+mod principled;
+mod principledthin;
 mod roughconductor;
 mod roughdielectric;
 mod roughplastic;
@@ -40,6 +43,8 @@ pub use perturbed::PerturbOptions;
 pub use phong::Phong;
 pub use plastic::{InternalScattering, Plastic};
 pub use pplastic::PPlastic;
+pub use principled::{Principled, PrincipledSamplingRates};
+pub use principledthin::{PrincipledThin, PrincipledThinSamplingRates};
 pub use roughconductor::RoughConductor;
 pub use roughdielectric::RoughDielectric;
 pub use roughplastic::RoughPlastic;
@@ -121,6 +126,8 @@ pub enum Bsdf {
     Plastic(Plastic),
     RoughPlastic(RoughPlastic),
     PPlastic(PPlastic),
+    Principled(Principled),
+    PrincipledThin(PrincipledThin),
     Phong(Phong),
     Merl(Merl),
     Mask(Mask),
@@ -143,6 +150,8 @@ macro_rules! dispatch {
             Bsdf::Plastic($b) => $e,
             Bsdf::RoughPlastic($b) => $e,
             Bsdf::PPlastic($b) => $e,
+            Bsdf::Principled($b) => $e,
+            Bsdf::PrincipledThin($b) => $e,
             Bsdf::Phong($b) => $e,
             Bsdf::Merl($b) => $e,
             Bsdf::Mask($b) => $e,
@@ -192,7 +201,9 @@ impl Bsdf {
             | Bsdf::RoughDielectric(_)
             | Bsdf::Plastic(_)
             | Bsdf::RoughPlastic(_)
-            | Bsdf::PPlastic(_) => true,
+            | Bsdf::PPlastic(_)
+            | Bsdf::Principled(_)
+            | Bsdf::PrincipledThin(_) => true,
             Bsdf::Phong(_) | Bsdf::Merl(_) => true,
             Bsdf::Conductor(_) | Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided(b) => b.has_smooth_lobe(),

@@ -180,3 +180,40 @@ pub fn albedo(bsdf: &Bsdf, wo: Vec3, n: usize, seed: u64) -> ([f64; 3], [f64; 3]
     let se = [0, 1, 2].map(|c| ((s2[c] / nf - mean[c] * mean[c]).max(0.0) / (nf - 1.0)).sqrt());
     (mean, se)
 }
+
+/// Compares `bsdfs[config]` with a table of Mitsuba 3's `eval` and `pdf` written by
+/// `scripts/bsdf_table.py` (columns: config, Mitsuba's wi (our wo), Mitsuba's wo (our wi),
+/// its eval, which includes |cos θ| of the sampled direction, and its pdf). Both must agree
+/// to 2e-3 relative (f32 arithmetic in a different order) above a floor of 1e-4 of the
+/// table's largest value.
+pub fn compare_with_mitsuba_table(bsdfs: &[Bsdf], table: &str) {
+    let s = sp();
+    let rows: Vec<Vec<f64>> = table
+        .lines()
+        .skip(1)
+        .map(|l| l.split(',').map(|x| x.parse::<f64>().expect("a number")).collect())
+        .collect();
+    assert!(rows.len() >= 8 * bsdfs.len(), "the table has {} rows", rows.len());
+    let peak = rows.iter().map(|r| r[7].max(r[8]).max(r[9]).max(r[10])).fold(0.0, f64::max);
+    let floor = 1e-4 * peak;
+    let v3 = |r: &[f64]| Vec3::new(r[0] as f32, r[1] as f32, r[2] as f32);
+    let mut nonzero = 0;
+    for r in &rows {
+        let b = &bsdfs[r[0] as usize];
+        let (wo, wi) = (v3(&r[1..4]), v3(&r[4..7]));
+        let f = b.eval(&s, wo, wi) * wi.z.abs();
+        let pdf = b.pdf(&s, wo, wi);
+        let ours = [f.x as f64, f.y as f64, f.z as f64, pdf as f64];
+        for (k, (&a, &m)) in ours.iter().zip(&r[7..11]).enumerate() {
+            assert!(
+                (a - m).abs() <= 2e-3 * m.abs() + floor,
+                "config {} wo {wo} wi {wi}: {} ours {a} vs Mitsuba {m}",
+                r[0],
+                ["f.r", "f.g", "f.b", "pdf"][k]
+            );
+        }
+        nonzero += (r[7] > 0.0) as usize;
+    }
+    // the table must exercise the lobes, not only zeros
+    assert!(nonzero * 2 >= rows.len(), "{nonzero} of {} values are non-zero", rows.len());
+}

@@ -1,9 +1,9 @@
-//! Emitter plugins: `area` (attached to a shape), `point`, `spot`, `directional`,
-//! `constant`, `envmap`.
+//! Emitter plugins: `area` and `directionalarea` (attached to a shape), `point`, `spot`,
+//! `directional`, `constant`, `envmap`, `projector`.
 
 use steradian::emitter::{
     AreaLight, ConstantEnvironment, DirectionalLight, Emitter, EnvironmentMap, PointLight,
-    SpotLight,
+    Projector, SpotLight,
 };
 use steradian::geometry::Transform;
 use steradian::{Spectrum, Vec3};
@@ -12,16 +12,23 @@ use super::{at, at_param, check_non_negative, lookup, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
-/// The `area` emitter of shape number `shape`.
+/// The emitter of shape number `shape`: `area`, or `directionalarea`, which emits only
+/// along the surface normal. No camera or surface path can connect to such a light (a
+/// direction has zero probability of being exactly the normal), so Mitsuba's `path` and
+/// `direct` integrators never see its light and neither does steradian: its parameters are
+/// checked, a warning says so, and no emitter is added (`None`).
 pub(crate) fn build_area(
     b: &super::Builder,
     node: &PluginNode,
     shape: u32,
-) -> Result<Emitter, LoadError> {
-    if node.plugin_type != "area" {
+) -> Result<Option<Emitter>, LoadError> {
+    if node.plugin_type != "area" && node.plugin_type != "directionalarea" {
         return Err(LoadError::at(
             &node.pos,
-            format!("a shape can only carry an 'area' emitter, not '{}'", node.plugin_type),
+            format!(
+                "a shape can only carry an 'area' or 'directionalarea' emitter, not '{}'",
+                node.plugin_type
+            ),
         ));
     }
     let radiance =
@@ -29,8 +36,24 @@ pub(crate) fn build_area(
     if let steradian::texture::Texture::Constant(v) = radiance {
         check_non_negative(node, "radiance", v)?;
     }
+    if node.plugin_type == "directionalarea" && node.props.contains("to_world") {
+        return Err(at(node)(
+            "'to_world' is not allowed: the emitter takes its shape's transform".into(),
+        ));
+    }
     node.check_all_used()?;
-    Ok(Emitter::Area(AreaLight::new(shape, radiance)))
+    if node.plugin_type == "directionalarea" {
+        b.warn(crate::error::LoadWarning::at(
+            &node.pos,
+            format!(
+                "{}: emits only along the surface normal, which no camera or surface path \
+                 can reach (as in Mitsuba's path tracer): it adds no light to this render",
+                node.desc()
+            ),
+        ));
+        return Ok(None);
+    }
+    Ok(Some(Emitter::Area(AreaLight::new(shape, radiance))))
 }
 
 /// A position given either as `position` or as the translation of `to_world`, not both.
@@ -58,6 +81,7 @@ pub(super) const EMITTERS: &Plugins<BuildEmitter> = &[
     ("directional", directional),
     ("constant", constant),
     ("envmap", build_envmap),
+    ("projector", projector),
 ];
 
 /// The `envmap` emitter (parameters and defaults: `steradian::emitter::EnvironmentMap`).
@@ -170,4 +194,25 @@ fn constant(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError
     let radiance = node.props.get_spectrum("radiance")?.unwrap_or(default);
     check_non_negative(node, "radiance", radiance)?;
     Ok(Emitter::Constant(ConstantEnvironment::new(radiance)))
+}
+
+/// `projector`: `irradiance` (required; a value or a texture), `scale`, `to_world`, and the
+/// field of view of `perspective` with the image's aspect ratio (1 for a constant).
+fn projector(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let irradiance = super::textures::texture_param(b, node, "irradiance", None)?;
+    if let steradian::texture::Texture::Constant(v) = irradiance {
+        check_non_negative(node, "irradiance", v)?;
+    }
+    let scale = p.get_float("scale")?.unwrap_or(Projector::DEFAULT_SCALE);
+    check_non_negative(node, "scale", Spectrum::splat(scale))?;
+    let (width, height) = match &irradiance {
+        steradian::texture::Texture::Bitmap(bm) => bm.resolution(),
+        _ => (1, 1),
+    };
+    let fov = super::sensors::field_of_view(node)?;
+    let x_fov = fov.x_fov(width as u32, height as u32).map_err(at_param(node))?;
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let aspect = width as f32 / height as f32;
+    Ok(Emitter::Projector(Projector::new(&to_world, irradiance, scale, x_fov, aspect)))
 }

@@ -109,7 +109,6 @@ pub(crate) type Plugins<F> = [(&'static str, F)];
 /// plugins stay here for good (steradian renders RGB); the others are missing features.
 pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("bsdf", &["hair", "measured", "measured_polarized", "polarizer", "retarder"]),
-    ("emitter", &["directionalarea", "projector"]),
     ("shape", &["bsplinecurve", "linearcurve", "sdfgrid", "ellipsoids", "ellipsoidsmesh", "merge"]),
     ("sensor", &["distant", "batch"]),
     ("film", &["specfilm"]),

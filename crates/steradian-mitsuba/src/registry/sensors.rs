@@ -338,7 +338,20 @@ struct Projective {
 fn projective(node: &PluginNode, film: &Film) -> Result<Projective, LoadError> {
     let p = &node.props;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
-    let fov = match (p.get_float("fov")?, p.get_string("focal_length")?) {
+    let fov = field_of_view(node)?;
+    let x_fov = fov.x_fov(film.width, film.height).map_err(at_param(node))?;
+    let aspect = film.width as f32 / film.height as f32;
+    let near_clip = p.get_float("near_clip")?.unwrap_or(Perspective::DEFAULT_NEAR_CLIP);
+    let far_clip = p.get_float("far_clip")?.unwrap_or(Perspective::DEFAULT_FAR_CLIP);
+    let focus_distance = p.get_float("focus_distance")?.unwrap_or(far_clip);
+    Ok(Projective { to_world, x_fov, aspect, near_clip, far_clip, focus_distance })
+}
+
+/// `fov` (with `fov_axis`) or `focal_length` of a projective camera, or of the `projector`
+/// emitter that shares its parameters.
+pub(crate) fn field_of_view(node: &PluginNode) -> Result<FieldOfView, LoadError> {
+    let p = &node.props;
+    Ok(match (p.get_float("fov")?, p.get_string("focal_length")?) {
         (Some(_), Some(_)) => {
             return Err(LoadError::at(
                 &node.pos,
@@ -372,13 +385,7 @@ fn projective(node: &PluginNode, film: &Film) -> Result<Projective, LoadError> {
                 },
             }
         }
-    };
-    let x_fov = fov.x_fov(film.width, film.height).map_err(at_param(node))?;
-    let aspect = film.width as f32 / film.height as f32;
-    let near_clip = p.get_float("near_clip")?.unwrap_or(Perspective::DEFAULT_NEAR_CLIP);
-    let far_clip = p.get_float("far_clip")?.unwrap_or(Perspective::DEFAULT_FAR_CLIP);
-    let focus_distance = p.get_float("focus_distance")?.unwrap_or(far_clip);
-    Ok(Projective { to_world, x_fov, aspect, near_clip, far_clip, focus_distance })
+    })
 }
 
 fn perspective(

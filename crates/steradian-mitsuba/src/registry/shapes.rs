@@ -266,17 +266,20 @@ fn build_placed(
         ));
     }
     let shape_index = b.desc.shapes.len() as u32;
-    let emitter = match emitter_nodes.first() {
-        Some(e) => {
-            let light = emitters::build_area(b, &e.node, shape_index)?;
-            b.desc.emitters.push(light);
-            Some((b.desc.emitters.len() - 1) as u32)
-        }
-        None => None,
+    // (the emitter's index, whether the shape carries one: `directionalarea` adds none)
+    let (emitter, emitting) = match emitter_nodes.first() {
+        Some(e) => match emitters::build_area(b, &e.node, shape_index)? {
+            Some(light) => {
+                b.desc.emitters.push(light);
+                (Some((b.desc.emitters.len() - 1) as u32), true)
+            }
+            None => (None, true),
+        },
+        None => (None, false),
     };
     let bsdf = match bsdfs.first() {
         Some(c) => b.bsdf_index(&c.node)?,
-        None => b.implicit_bsdf(emitter.is_some()),
+        None => b.implicit_bsdf(emitting),
     };
     for c in node.children_of(ObjectTag::Sensor) {
         let sensor = super::sensors::build(&c.node, Some(shape_index))?;

@@ -8,6 +8,7 @@
 //! | `directional` | irradiance H ⟂ the beam   | W/m²        |
 //! | `constant`    | radiance L of the sky     | W/(m²·sr)   |
 //! | `envmap`      | radiance L of the sky, per pixel × `scale` | W/(m²·sr) |
+//! | `projector`   | irradiance E of an image on the plane z = 1 (× π, × `scale`) | W/m² |
 //!
 //! `sample_direction` answers "from which direction does this light reach point p, and with
 //! what weight?": the returned `weight` is the incident radiance divided by the solid-angle
@@ -20,6 +21,7 @@ mod directional;
 mod envmap;
 mod light_selection;
 mod point;
+mod projector;
 mod spot;
 
 pub use area::AreaLight;
@@ -28,6 +30,7 @@ pub use directional::DirectionalLight;
 pub use envmap::EnvironmentMap;
 pub use light_selection::LightSelection;
 pub use point::PointLight;
+pub use projector::Projector;
 pub use spot::SpotLight;
 
 use glam::{Vec2, Vec3};
@@ -69,6 +72,7 @@ pub enum Emitter {
     Directional(DirectionalLight),
     Constant(ConstantEnvironment),
     EnvMap(EnvironmentMap),
+    Projector(Projector),
 }
 
 impl Emitter {
@@ -82,6 +86,7 @@ impl Emitter {
             Emitter::Directional(e) => e.sample_direction(p),
             Emitter::Constant(e) => e.sample_direction(p, u),
             Emitter::EnvMap(e) => e.sample_direction(u),
+            Emitter::Projector(e) => e.sample_direction(p),
         }
     }
 
@@ -93,7 +98,10 @@ impl Emitter {
             Emitter::Area(e) => e.pdf_direction(shapes, p, wi, light),
             Emitter::Constant(e) => e.pdf_direction(wi),
             Emitter::EnvMap(e) => e.pdf_direction(wi),
-            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => 0.0,
+            Emitter::Point(_)
+            | Emitter::Spot(_)
+            | Emitter::Directional(_)
+            | Emitter::Projector(_) => 0.0,
         }
     }
 
@@ -106,7 +114,10 @@ impl Emitter {
             Emitter::Area(e) => e.radiance(wo, n, uv),
             Emitter::Constant(e) => e.radiance(),
             Emitter::EnvMap(e) => e.radiance(-wo),
-            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => Spectrum::ZERO,
+            Emitter::Point(_)
+            | Emitter::Spot(_)
+            | Emitter::Directional(_)
+            | Emitter::Projector(_) => Spectrum::ZERO,
         }
     }
 
@@ -114,7 +125,10 @@ impl Emitter {
     pub fn support(&self) -> Support {
         match self {
             Emitter::Area(_) | Emitter::Constant(_) | Emitter::EnvMap(_) => Support::Extended,
-            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => Support::Delta,
+            Emitter::Point(_)
+            | Emitter::Spot(_)
+            | Emitter::Directional(_)
+            | Emitter::Projector(_) => Support::Delta,
         }
     }
 
@@ -126,7 +140,10 @@ impl Emitter {
     pub fn light_sampling_bounded(&self, shapes: &[Shape], p: Vec3) -> bool {
         match self {
             Emitter::Area(e) => shapes[e.shape as usize].light_sampling_bounded(p),
-            Emitter::Point(_) | Emitter::Spot(_) | Emitter::Directional(_) => true,
+            Emitter::Point(_)
+            | Emitter::Spot(_)
+            | Emitter::Directional(_)
+            | Emitter::Projector(_) => true,
             Emitter::Constant(_) | Emitter::EnvMap(_) => false,
         }
     }
@@ -148,6 +165,7 @@ impl Emitter {
             Emitter::Directional(e) => e.irradiance * PI * scene_radius * scene_radius,
             Emitter::Constant(e) => e.radiance * 4.0 * PI * PI * scene_radius * scene_radius,
             Emitter::EnvMap(e) => e.integral() * PI * scene_radius * scene_radius,
+            Emitter::Projector(e) => e.flux(),
         }
     }
 }

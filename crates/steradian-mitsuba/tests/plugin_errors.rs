@@ -68,7 +68,7 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
     for (tag, ty) in [
         ("shape", "ellipsoids"),
         ("shape", "bsplinecurve"),
-        ("emitter", "projector"),
+        ("texture", "volume"),
         ("bsdf", "hair"),
         ("bsdf", "polarizer"),
         ("integrator", "ptracer"),
@@ -90,7 +90,12 @@ fn unknown_emitter_type() {
         &["unknown emitter plugin type 'envmapp'", "constant", "envmap"],
     );
     let xml = scene("<shape type=\"sphere\">\n  <emitter type=\"point\"/>\n</shape>");
-    check(&err(&xml), 3, 3, &["a shape can only carry an 'area' emitter, not 'point'"]);
+    check(
+        &err(&xml),
+        3,
+        3,
+        &["a shape can only carry an 'area' or 'directionalarea' emitter, not 'point'"],
+    );
 }
 
 #[test]

@@ -14,8 +14,8 @@ const SPP: u32 = 64;
 
 #[test]
 fn projector_matches_mitsuba() {
-    let job = steradian_mitsuba::load_file(&data("projector.xml"), &[])
-        .unwrap_or_else(|e| panic!("{e}"));
+    let job =
+        steradian_mitsuba::load_file(&data("projector.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
     assert!(z_test_against(&job, SPP, "projector", "projector").passes());
     let z = image_mean_z(&job, SPP, "projector", 4096);
     eprintln!("projector image mean: z = {z:.2}");

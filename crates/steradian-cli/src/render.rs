@@ -8,7 +8,7 @@ use std::time::Duration;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use steradian::film::false_color_png;
-use steradian::film::{write_exr, write_png};
+use steradian::film::{write_exr, write_exr_channels, write_png, ComponentFormat, ExrLayer};
 use steradian::render::{render, PixelQuantity, Progress, RenderError, RenderOptions};
 use steradian::sampling::SamplerKind;
 
@@ -213,7 +213,19 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     bar.finish_and_clear();
 
     let (image, error) = (out.image(), out.stderr_image());
-    write_exr(&output, &image)?;
+    let aovs = out.aov_images();
+    if aovs.is_empty() {
+        write_exr(&output, &image)?;
+    } else {
+        // `moment`: the image's R, G, B, then each AOV layer's channels (Mitsuba's layout)
+        let mut layers = vec![ExrLayer { prefix: "", channels: ["R", "G", "B"], image: &image }];
+        layers.extend(aovs.iter().map(|(layer, img)| ExrLayer {
+            prefix: &layer.name,
+            channels: layer.channels,
+            image: img,
+        }));
+        write_exr_channels(&output, &layers, ComponentFormat::Float32)?;
+    }
     let png = output.with_extension("png");
     match args.quantity {
         Quantity::Radiance => write_png(&png, &image, 1.0)?,

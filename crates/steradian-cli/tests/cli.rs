@@ -260,3 +260,30 @@ fn ctrl_c_keeps_the_finished_passes() {
     assert_eq!((img.width, img.height), (64, 64));
     assert_finite_positive(&img);
 }
+
+/// A `moment` scene's EXR holds the image and, beside it, Mitsuba's layers: the nested
+/// integrator's mean XYZ (its Y the image's luminance) and second moment (at least m1²).
+#[test]
+fn moment_writes_its_layers() {
+    let dir = temp_dir("moment");
+    std::fs::write(
+        dir.join("m.xml"),
+        r#"<scene version="3.0.0">
+    <integrator type="moment"><integrator type="path" name="pt"/></integrator>
+    <sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="6"/></film></sensor>
+    <emitter type="constant"/>
+    <shape type="sphere"/>
+</scene>"#,
+    )
+    .unwrap();
+    ok(&dir, &["render", "m.xml", "-o", "m.exr", "--spp", "16", "--quiet"]);
+    let path = dir.join("m.exr");
+    let image = read(&path);
+    let m1 = steradian::film::read_exr_channels(&path, ["pt.X", "pt.Y", "pt.Z"]).unwrap();
+    let m2 = steradian::film::read_exr_channels(&path, ["m2_pt.X", "m2_pt.Y", "m2_pt.Z"]).unwrap();
+    for ((rgb, xyz), sq) in image.data.chunks(3).zip(m1.data.chunks(3)).zip(m2.data.chunks(3)) {
+        let y = 0.212671 * rgb[0] + 0.715160 * rgb[1] + 0.072169 * rgb[2];
+        assert!((xyz[1] - y).abs() <= 1e-5 * y.max(1e-3), "{xyz:?} vs {rgb:?}");
+        assert!(sq[1] >= xyz[1] * xyz[1] * (1.0 - 1e-5), "m2 {} < m1² {}", sq[1], xyz[1] * xyz[1]);
+    }
+}

@@ -15,6 +15,21 @@ pub type Spectrum = glam::Vec3A;
 /// Luminance weights of linear sRGB / Rec. 709 primaries (the Y row of RGB → XYZ).
 pub const LUMINANCE_WEIGHTS: Spectrum = Spectrum::new(0.212671, 0.715160, 0.072169);
 
+/// Linear sRGB (Rec. 709 primaries, D65) to CIE XYZ, Mitsuba 3's `srgb_to_xyz`; its middle
+/// row is [`LUMINANCE_WEIGHTS`].
+pub const RGB_TO_XYZ: [[f64; 3]; 3] = [
+    [0.412453, 0.357580, 0.180423],
+    [0.212671, 0.715160, 0.072169],
+    [0.019334, 0.119193, 0.950227],
+];
+
+/// CIE XYZ of a linear sRGB value (same unit).
+#[inline]
+pub fn srgb_to_xyz(s: Spectrum) -> Spectrum {
+    let row = |r: [f64; 3]| r[0] as f32 * s.x + r[1] as f32 * s.y + r[2] as f32 * s.z;
+    Spectrum::new(row(RGB_TO_XYZ[0]), row(RGB_TO_XYZ[1]), row(RGB_TO_XYZ[2]))
+}
+
 /// Photopic luminance Y of a linear RGB value (same unit as the value).
 #[inline]
 pub fn luminance(s: Spectrum) -> f32 {

@@ -1,11 +1,13 @@
-//! Integrator plugins: `path`, `direct`, `depth`.
+//! Integrator plugins: `path`, `direct`, `depth`, `moment`.
 
 use steradian::emitter::LightSelection;
 use steradian::integrator::{
     parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility,
     DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
 };
-use steradian::integrator::{DepthIntegrator, DirectIntegrator, Integrator, PathTracer};
+use steradian::integrator::{
+    DepthIntegrator, DirectIntegrator, Integrator, MomentIntegrator, PathTracer,
+};
 
 use super::{at_param, lookup, Plugins};
 use crate::error::LoadError;
@@ -48,7 +50,7 @@ type BuildIntegrator = fn(&PluginNode) -> Result<Integrator, LoadError>;
 
 /// Every integrator plugin, by Mitsuba `type`.
 pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> =
-    &[("path", path), ("direct", direct), ("depth", depth)];
+    &[("path", path), ("direct", direct), ("depth", depth), ("moment", moment)];
 
 pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
     let integrator = lookup(INTEGRATORS, node)?(node)?;
@@ -104,4 +106,43 @@ fn direct(node: &PluginNode) -> Result<Integrator, LoadError> {
 /// `depth` (no parameters): distance to the first hit (`steradian::integrator::DepthIntegrator`).
 fn depth(_: &PluginNode) -> Result<Integrator, LoadError> {
     Ok(Integrator::Depth(DepthIntegrator))
+}
+
+/// `moment`: its nested integrators (at least one, at most 8), each named by its XML `name`
+/// or, unnamed, `_arg_<i>` (i counting the unnamed ones), as Mitsuba names them. A nested
+/// `path` without `branches` traces one path per sample (integrator/moment.rs).
+fn moment(node: &PluginNode) -> Result<Integrator, LoadError> {
+    let children = node.children_of(crate::tree::ObjectTag::Integrator);
+    if children.is_empty() {
+        return Err(super::at(node)("needs at least one nested <integrator>".into()));
+    }
+    const MAX_NESTED: usize = 8;
+    if children.len() > MAX_NESTED {
+        return Err(LoadError::at(
+            children[MAX_NESTED].pos(),
+            format!("{}: at most {MAX_NESTED} nested integrators", node.desc()),
+        ));
+    }
+    let mut unnamed = 0;
+    let mut nested = Vec::with_capacity(children.len());
+    for c in children {
+        if c.node.plugin_type == "moment" {
+            return Err(LoadError::at(c.pos(), "a moment integrator cannot nest another"));
+        }
+        let mut integrator = build(&c.node)?;
+        if let Integrator::Path(p) = &mut integrator {
+            if !c.node.props.contains("branches") {
+                p.branches = Branches::Fixed(1);
+            }
+        }
+        let name = match &c.name {
+            Some(n) => n.clone(),
+            None => {
+                unnamed += 1;
+                format!("_arg_{}", unnamed - 1)
+            }
+        };
+        nested.push((name, integrator));
+    }
+    Ok(Integrator::Moment(MomentIntegrator { nested }))
 }

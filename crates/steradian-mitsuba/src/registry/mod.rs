@@ -117,7 +117,6 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
         "integrator",
         &[
             "aov",
-            "moment",
             "ptracer",
             "stokes",
             "volpath",

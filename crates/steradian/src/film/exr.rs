@@ -32,24 +32,46 @@ pub fn write_exr_layers_as(
     layers: &[(&str, &Image)],
     format: ComponentFormat,
 ) -> Result<(), String> {
+    let layers: Vec<ExrLayer> = layers
+        .iter()
+        .map(|&(prefix, image)| ExrLayer { prefix, channels: ["R", "G", "B"], image })
+        .collect();
+    write_exr_channels(path, &layers, format)
+}
+
+/// One three-channel layer of an EXR file: channels `<prefix>.<channel>` (just `<channel>`
+/// for the prefix `""`).
+#[derive(Clone, Copy, Debug)]
+pub struct ExrLayer<'a> {
+    pub prefix: &'a str,
+    pub channels: [&'a str; 3],
+    pub image: &'a Image,
+}
+
+/// Writes same-sized layers with their own channel names (e.g. an AOV's `X`, `Y`, `Z`).
+pub fn write_exr_channels(
+    path: &Path,
+    layers: &[ExrLayer],
+    format: ComponentFormat,
+) -> Result<(), String> {
     let err = |msg: String| format!("cannot write EXR {}: {msg}", path.display());
-    let Some((_, first)) = layers.first() else {
+    let Some(first) = layers.first() else {
         return Err(err("no image to write".into()));
     };
-    let (w, h) = (first.width, first.height);
+    let (w, h) = (first.image.width, first.image.height);
     if w == 0 || h == 0 {
         return Err(err(format!("empty image {w}x{h}")));
     }
     let mut channels: SmallVec<[AnyChannel<FlatSamples>; 4]> = SmallVec::new();
     let mut names: Vec<String> = Vec::new();
-    for (prefix, img) in layers {
+    for &ExrLayer { prefix, channels: layer_channels, image: img } in layers {
         if img.width != w || img.height != h || img.data.len() != 3 * w as usize * h as usize {
             return Err(err(format!(
                 "layer \"{prefix}\" is {}x{}, the first layer is {w}x{h}",
                 img.width, img.height
             )));
         }
-        for (c, ch) in ["R", "G", "B"].iter().enumerate() {
+        for (c, ch) in layer_channels.iter().enumerate() {
             let name = if prefix.is_empty() { ch.to_string() } else { format!("{prefix}.{ch}") };
             if names.contains(&name) {
                 return Err(err(format!("duplicate channel {name}")));
@@ -70,12 +92,18 @@ pub fn write_exr_layers_as(
 /// Reads the RGB channels (`R`, `G`, `B`, float16, float32 or uint32; any compression) of an
 /// EXR file. The first layer (part) holding all three is used; an error if none does.
 pub fn read_exr(path: &Path) -> Result<Image, String> {
+    read_exr_channels(path, ["R", "G", "B"])
+}
+
+/// Reads three named channels (e.g. a `moment` AOV's `m2_path.X`, `m2_path.Y`, `m2_path.Z`)
+/// of an EXR file into an [`Image`], from the first layer (part) holding all three.
+pub fn read_exr_channels(path: &Path, names: [&str; 3]) -> Result<Image, String> {
     let err = |msg: String| format!("cannot read EXR {}: {msg}", path.display());
     let image =
         ::exr::prelude::read_all_flat_layers_from_file(path).map_err(|e| err(e.to_string()))?;
     for layer in &image.layer_data {
         let find = |name: &str| layer.channel_data.list.iter().find(|c| c.name.eq(name));
-        let (Some(r), Some(g), Some(b)) = (find("R"), find("G"), find("B")) else {
+        let (Some(r), Some(g), Some(b)) = (find(names[0]), find(names[1]), find(names[2])) else {
             continue;
         };
         let (w, h) = (layer.size.width(), layer.size.height());
@@ -95,7 +123,7 @@ pub fn read_exr(path: &Path) -> Result<Image, String> {
         }
         return Image::from_data(w as u32, h as u32, data).map_err(err);
     }
-    Err(err("no layer with R, G and B channels".into()))
+    Err(err(format!("no layer with channels {}, {} and {}", names[0], names[1], names[2])))
 }
 
 #[cfg(test)]

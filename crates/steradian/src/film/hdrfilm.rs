@@ -66,7 +66,19 @@ pub struct Film {
     /// Whether the sensor should also sample the border pixels outside the film (default false).
     pub sample_border: bool,
     data: Vec<PixelAccum>,
+    /// AOV layers: names and Σw·a per pixel (pixel-major, then layer), see
+    /// [`with_aov_layers`](Film::with_aov_layers).
+    aov_names: Vec<AovLayer>,
+    aov: Vec<[f64; 3]>,
     dropped: u64,
+}
+
+/// An extra three-channel image an integrator writes beside the radiance (Mitsuba's AOVs):
+/// its EXR channels are `<name>.<channel>`.
+#[derive(Clone, Debug, PartialEq)]
+pub struct AovLayer {
+    pub name: String,
+    pub channels: [&'static str; 3],
 }
 
 impl Default for Film {
@@ -102,8 +114,34 @@ impl Film {
             component_format: ComponentFormat::default(),
             sample_border: false,
             data: vec![PixelAccum::default(); width as usize * height as usize],
+            aov_names: Vec::new(),
+            aov: Vec::new(),
             dropped: 0,
         })
+    }
+
+    /// The film with AOV layers (cleared), developed like the radiance: Σw·a/Σw with the
+    /// weights of the film's filter.
+    pub fn with_aov_layers(mut self, layers: Vec<AovLayer>) -> Self {
+        self.aov = vec![[0.0; 3]; self.data.len() * layers.len()];
+        self.aov_names = layers;
+        self
+    }
+
+    /// The AOV layers' names.
+    pub fn aov_layers(&self) -> &[AovLayer] {
+        &self.aov_names
+    }
+
+    /// AOV layer `k` developed: per pixel Σw·a/Σw (0 where Σw = 0).
+    pub fn develop_aov(&self, k: usize) -> Image {
+        let n = self.aov_names.len();
+        let mut data = Vec::with_capacity(self.data.len() * 3);
+        for (i, p) in self.data.iter().enumerate() {
+            let a = self.aov[i * n + k];
+            data.extend(a.map(|v| if p.w != 0.0 { (v / p.w) as f32 } else { 0.0 }));
+        }
+        Image { width: self.width, height: self.height, data }
     }
 
     /// Film size in pixels.
@@ -115,6 +153,7 @@ impl Film {
     /// writes pixels outside the film.
     pub fn create_block(&self, offset: UVec2, size: UVec2) -> ImageBlock {
         ImageBlock::with_clip(offset, size, &self.filter, [self.width as i64, self.height as i64])
+            .with_aov_layers(self.aov_names.len())
     }
 
     /// Number of non-finite samples dropped by the merged blocks.
@@ -131,6 +170,7 @@ impl Film {
     /// Resets all sums to zero.
     pub fn clear(&mut self) {
         self.data.fill(PixelAccum::default());
+        self.aov.fill([0.0; 3]);
         self.dropped = 0;
     }
 
@@ -147,11 +187,21 @@ impl Film {
         }
         let n = (x1 - x0) as usize;
         let src_all = block.pixels();
+        let layers = self.aov_names.len();
+        debug_assert_eq!(block.aov_layers(), layers, "the block's AOV layers are the film's");
         for y in y0..y1 {
             let s = ((y - origin[1]) * stride[0] + (x0 - origin[0])) as usize;
             let d = (y as usize) * self.width as usize + x0 as usize;
             for (dst, src) in self.data[d..d + n].iter_mut().zip(&src_all[s..s + n]) {
                 dst.add(src);
+            }
+            if layers > 0 && block.aov_layers() == layers {
+                let (src, dst) = (&block.aovs()[s * layers..(s + n) * layers], &mut self.aov);
+                for (a, b) in dst[d * layers..(d + n) * layers].iter_mut().zip(src) {
+                    for c in 0..3 {
+                        a[c] += b[c];
+                    }
+                }
             }
         }
     }
@@ -164,8 +214,16 @@ impl Film {
                 other.width, other.height, self.width, self.height
             ));
         }
+        if self.aov_names != other.aov_names {
+            return Err("hdrfilm: cannot accumulate films with different AOV layers".into());
+        }
         for (d, s) in self.data.iter_mut().zip(&other.data) {
             d.add(s);
+        }
+        for (a, b) in self.aov.iter_mut().zip(&other.aov) {
+            for c in 0..3 {
+                a[c] += b[c];
+            }
         }
         self.dropped += other.dropped;
         Ok(())

@@ -84,6 +84,10 @@ pub struct ImageBlock {
     /// Exclusive upper bound (film coordinates) of pixels that may be written.
     clip_max: [i64; 2],
     data: Vec<PixelAccum>,
+    /// Σw·a of each AOV layer a (three channels each), pixel-major: pixel i's layer k at
+    /// `i·aov_layers + k`. Empty unless an integrator writes AOVs (`moment`).
+    aov: Vec<[f64; 3]>,
+    aov_layers: usize,
     dropped: u64,
 }
 
@@ -110,8 +114,28 @@ impl ImageBlock {
             stride,
             clip_max,
             data: vec![PixelAccum::default(); (stride[0] * stride[1]) as usize],
+            aov: Vec::new(),
+            aov_layers: 0,
             dropped: 0,
         }
+    }
+
+    /// The block with `layers` AOV layers of three channels, splatted by
+    /// [`put_with_aovs`](Self::put_with_aovs) with the same weights as the radiance.
+    pub fn with_aov_layers(mut self, layers: usize) -> Self {
+        self.aov_layers = layers;
+        self.aov = vec![[0.0; 3]; self.data.len() * layers];
+        self
+    }
+
+    /// Number of AOV layers.
+    pub fn aov_layers(&self) -> usize {
+        self.aov_layers
+    }
+
+    /// The AOV sums Σw·a, pixel-major over [`storage_rect`](Self::storage_rect), then layer.
+    pub fn aovs(&self) -> &[[f64; 3]] {
+        &self.aov
     }
 
     /// Film coordinates of the block's first interior pixel.
@@ -149,6 +173,7 @@ impl ImageBlock {
     /// Resets all sums and the dropped count to zero.
     pub fn clear(&mut self) {
         self.data.fill(PixelAccum::default());
+        self.aov.fill([0.0; 3]);
         self.dropped = 0;
     }
 
@@ -179,10 +204,19 @@ impl ImageBlock {
     /// one pixel containing `pos`. Non-finite positions or values are dropped and counted.
     #[inline]
     pub fn put(&mut self, pos: Vec2, value: Spectrum) {
-        if !(pos.is_finite() && value.is_finite()) {
+        self.put_with_aovs(pos, value, &[]);
+    }
+
+    /// [`put`](Self::put) that also splats one value per AOV layer (`aovs.len()` equal to
+    /// [`aov_layers`](Self::aov_layers), or empty). A sample with any non-finite value is
+    /// dropped whole.
+    #[inline]
+    pub fn put_with_aovs(&mut self, pos: Vec2, value: Spectrum, aovs: &[Spectrum]) {
+        if !(pos.is_finite() && value.is_finite() && aovs.iter().all(|a| a.is_finite())) {
             self.dropped += 1;
             return;
         }
+        debug_assert!(aovs.is_empty() || aovs.len() == self.aov_layers);
         let l = [value.x as f64, value.y as f64, value.z as f64];
 
         if self.filter.is_box() {
@@ -196,7 +230,9 @@ impl ImageBlock {
             if lx < 0 || ly < 0 || lx >= self.stride[0] || ly >= self.stride[1] {
                 return;
             }
-            self.data[(ly * self.stride[0] + lx) as usize].add_sample(1.0, l);
+            let i = (ly * self.stride[0] + lx) as usize;
+            self.data[i].add_sample(1.0, l);
+            self.add_aovs(i, 1.0, aovs);
             return;
         }
 
@@ -215,7 +251,7 @@ impl ImageBlock {
             tap_offsets(lo_x, pos.x, wx);
             tap_offsets(lo_y, pos.y, wy);
             self.filter.eval_in_place(&mut w);
-            self.splat(x0, &w[..nx], y0, &w[SMALL_TAPS..SMALL_TAPS + ny], l);
+            self.splat(x0, &w[..nx], y0, &w[SMALL_TAPS..SMALL_TAPS + ny], l, aovs);
         } else {
             let mut wx = [0.0f32; MAX_FILTER_TAPS];
             let mut wy = [0.0f32; MAX_FILTER_TAPS];
@@ -223,13 +259,21 @@ impl ImageBlock {
             tap_offsets(lo_y, pos.y, &mut wy[..ny]);
             self.filter.eval_in_place(&mut wx[..nx]);
             self.filter.eval_in_place(&mut wy[..ny]);
-            self.splat(x0, &wx[..nx], y0, &wy[..ny], l);
+            self.splat(x0, &wx[..nx], y0, &wy[..ny], l, aovs);
         }
     }
 
     /// Adds `l` with weight `wy[j]·wx[i]` to local pixel (x0 + i, y0 + j).
     #[inline(always)]
-    fn splat(&mut self, x0: usize, wx: &[f32], y0: usize, wy: &[f32], l: [f64; 3]) {
+    fn splat(
+        &mut self,
+        x0: usize,
+        wx: &[f32],
+        y0: usize,
+        wy: &[f32],
+        l: [f64; 3],
+        aovs: &[Spectrum],
+    ) {
         let stride = self.stride[0] as usize;
         for (j, &wyj) in wy.iter().enumerate() {
             if wyj == 0.0 {
@@ -241,6 +285,24 @@ impl ImageBlock {
                 if wxi != 0.0 {
                     px.add_sample(wyj * wxi as f64, l);
                 }
+            }
+            if !aovs.is_empty() {
+                for (i, &wxi) in wx.iter().enumerate() {
+                    if wxi != 0.0 {
+                        self.add_aovs(row + i, wyj * wxi as f64, aovs);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Adds w·a of each AOV layer to storage pixel `i`.
+    #[inline(always)]
+    fn add_aovs(&mut self, i: usize, w: f64, aovs: &[Spectrum]) {
+        let n = self.aov_layers;
+        for (acc, a) in self.aov[i * n..i * n + aovs.len()].iter_mut().zip(aovs) {
+            for c in 0..3 {
+                acc[c] += w * a[c] as f64;
             }
         }
     }
@@ -317,6 +379,28 @@ mod tests {
             }
         }
         assert_eq!(touched, expect_touched, "{} at {pos}", filter.plugin_name());
+    }
+
+    /// AOV layers are splatted with the radiance's weights: every pixel holds w·a for each
+    /// layer where it holds w·L.
+    #[test]
+    fn aovs_share_the_radiance_weights() {
+        let g = ReconstructionFilter::from(GaussianFilter::default());
+        let mut b = ImageBlock::new(UVec2::new(0, 0), UVec2::new(8, 8), &g).with_aov_layers(2);
+        let (l, a) = (Spectrum::splat(1.0), [Spectrum::new(2.0, 3.0, 4.0), Spectrum::splat(-1.0)]);
+        b.put_with_aovs(Vec2::new(3.3, 4.6), l, &a);
+        let mut touched = 0;
+        for (i, p) in b.pixels().iter().enumerate() {
+            for (k, ak) in a.iter().enumerate() {
+                for c in 0..3 {
+                    assert_eq!(b.aovs()[2 * i + k][c], p.w * ak[c] as f64);
+                }
+            }
+            touched += (p.w > 0.0) as usize;
+        }
+        assert_eq!(touched, 16);
+        b.put_with_aovs(Vec2::new(3.3, 4.6), l, &[Spectrum::splat(f32::NAN), Spectrum::ONE]);
+        assert_eq!(b.dropped(), 1);
     }
 
     #[test]

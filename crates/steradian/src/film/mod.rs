@@ -10,14 +10,17 @@ mod image_block;
 pub mod png;
 mod ztest;
 
-pub use self::exr::{read_exr, write_exr, write_exr_layers, write_exr_layers_as};
+pub use self::exr::{
+    read_exr, read_exr_channels, write_exr, write_exr_channels, write_exr_layers,
+    write_exr_layers_as, ExrLayer,
+};
 pub use self::png::{encode_png_rgb8, read_png_rgb8, srgb_encode_u8, write_png};
 pub use falsecolor::{false_color, false_color_png};
 pub use filter::{
     BoxFilter, CatmullRomFilter, GaussianFilter, LanczosFilter, MitchellFilter,
     ReconstructionFilter, TentFilter,
 };
-pub use hdrfilm::{ComponentFormat, Film, MAX_FILM_SIZE};
+pub use hdrfilm::{AovLayer, ComponentFormat, Film, MAX_FILM_SIZE};
 pub use image::{mse, rel_mse, Image};
 pub use image_block::{ImageBlock, PixelAccum};
 pub use ztest::{erfc, z_test, ZTest, ZTEST_ALPHA, ZTEST_MIN_VARIANCE, ZTEST_PASS_FRACTION};

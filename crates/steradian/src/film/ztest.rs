@@ -11,6 +11,7 @@
 //! the image passes when at least 99.75 % of its pixels pass.
 
 use super::Image;
+use crate::spectrum::RGB_TO_XYZ;
 
 /// Significance level of the whole image (before the Šidák correction).
 pub const ZTEST_ALPHA: f64 = 0.01;
@@ -43,13 +44,7 @@ impl ZTest {
     }
 }
 
-/// Linear sRGB (Rec. 709 primaries, D65) to CIE XYZ.
-const RGB_TO_XYZ: [[f64; 3]; 3] = [
-    [0.412453, 0.357580, 0.180423],
-    [0.212671, 0.715160, 0.072169],
-    [0.019334, 0.119193, 0.950227],
-];
-
+/// Linear sRGB to CIE XYZ in f64 ([`RGB_TO_XYZ`]).
 fn to_xyz(px: &[f32]) -> [f64; 3] {
     RGB_TO_XYZ.map(|row| row.iter().zip(px).map(|(m, &c)| m * c as f64).sum())
 }

@@ -44,6 +44,7 @@ fn reflected_only(integrator: &Integrator) -> Option<Integrator> {
         }
         // refused by the render plan (Integrator::estimates_light)
         Integrator::Depth(_) => None,
+        Integrator::Moment(m) => m.nested.first().and_then(|(_, i)| reflected_only(i)),
     }
 }
 

@@ -7,12 +7,14 @@ mod depth;
 mod direct;
 mod irradiance;
 mod mis;
+mod moment;
 mod path;
 
 pub use branching::{pilot, Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
 pub use depth::DepthIntegrator;
 pub use direct::DirectIntegrator;
 pub use irradiance::estimate_irradiance;
+pub use moment::MomentIntegrator;
 pub use path::{
     parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LastVertex,
     PathTracer, DEFAULT_BRANCHES, DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
@@ -31,6 +33,7 @@ pub enum Integrator {
     Path(PathTracer),
     Direct(DirectIntegrator),
     Depth(DepthIntegrator),
+    Moment(MomentIntegrator),
 }
 
 impl Integrator {
@@ -40,23 +43,41 @@ impl Integrator {
             Integrator::Path(p) => p.light_selection,
             Integrator::Direct(d) => d.light_selection,
             Integrator::Depth(_) => LightSelection::default(),
+            Integrator::Moment(m) => {
+                m.nested.first().map_or(LightSelection::default(), |(_, i)| i.light_selection())
+            }
         }
     }
 
     /// An unbiased estimate of the radiance L (W/(m²·sr)) arriving at the ray's origin from
-    /// direction −ray.d.
+    /// direction −ray.d (`moment`: its first integrator's, without the AOVs).
     #[inline]
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
         match self {
             Integrator::Path(i) => i.li(scene, ray, sampler),
             Integrator::Direct(i) => i.li(scene, ray, sampler),
             Integrator::Depth(i) => i.li(scene, ray),
+            Integrator::Moment(m) => {
+                m.nested.first().map_or(Spectrum::ZERO, |(_, i)| i.li(scene, ray, sampler))
+            }
         }
     }
 
     /// Whether its estimates are light (radiance): false for `depth`, whose values are
     /// distances, so meters and irradiance maps refuse it.
     pub fn estimates_light(&self) -> bool {
-        !matches!(self, Integrator::Depth(_))
+        match self {
+            Integrator::Depth(_) => false,
+            Integrator::Moment(m) => m.nested.first().is_some_and(|(_, i)| i.estimates_light()),
+            _ => true,
+        }
+    }
+
+    /// The AOV layers it writes beside the image (`moment`'s; none for the others).
+    pub fn aov_layers(&self) -> Vec<crate::film::AovLayer> {
+        match self {
+            Integrator::Moment(m) => m.aov_layers(),
+            _ => Vec::new(),
+        }
     }
 }

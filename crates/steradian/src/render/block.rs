@@ -25,7 +25,13 @@ pub(super) struct BlockRenderer<'a> {
     pub filter: ReconstructionFilter,
     pub width: u32,
     pub height: u32,
+    /// AOV layers of the film (`moment`'s), 0 for most integrators.
+    pub aov_layers: usize,
 }
+
+/// The most AOV layers a sample carries (`moment` with 8 nested integrators); the loader
+/// refuses more.
+pub const MAX_AOV_LAYERS: usize = 16;
 
 /// A rendered work item.
 pub(super) struct RenderedBlock {
@@ -46,6 +52,7 @@ impl<'a> BlockRenderer<'a> {
             filter: plan.film.filter,
             width: plan.film.width,
             height: plan.film.height,
+            aov_layers: plan.film.aov_layers().len(),
         }
     }
 
@@ -56,7 +63,11 @@ impl<'a> BlockRenderer<'a> {
         let (width, height) = (self.width, self.height);
         // blocks as `Film::create_block` makes them (the film itself is borrowed for merging)
         let mut block =
-            ImageBlock::with_clip(offset, size, &self.filter, [width as i64, height as i64]);
+            ImageBlock::with_clip(offset, size, &self.filter, [width as i64, height as i64])
+                .with_aov_layers(self.aov_layers);
+        if self.aov_layers > 0 {
+            return self.render_with_aovs(item, block, cancelled);
+        }
         let mut dropped = 0u64;
         for y in offset.y..offset.y + size.y {
             if cancelled() {
@@ -79,6 +90,45 @@ impl<'a> BlockRenderer<'a> {
                     }
                     if l.is_finite() {
                         block.put(pos, l);
+                    } else {
+                        dropped += 1;
+                    }
+                }
+            }
+        }
+        Some(RenderedBlock { block, dropped })
+    }
+
+    /// [`render`](Self::render) for an integrator that writes AOVs (`moment`, cameras only).
+    fn render_with_aovs(
+        &self,
+        item: &WorkItem,
+        mut block: ImageBlock,
+        cancelled: impl Fn() -> bool,
+    ) -> Option<RenderedBlock> {
+        let WorkItem { offset, size, s0, s1 } = *item;
+        let Integrator::Moment(moment) = self.integrator else {
+            unreachable!("only moment writes AOVs")
+        };
+        let n = self.aov_layers.min(MAX_AOV_LAYERS);
+        let mut aovs = [Spectrum::ZERO; MAX_AOV_LAYERS];
+        let mut dropped = 0u64;
+        for y in offset.y..offset.y + size.y {
+            if cancelled() {
+                return None;
+            }
+            for x in offset.x..offset.x + size.x {
+                let pixel = UVec2::new(x, y);
+                for index in s0..s1 {
+                    let mut s = self.sampler.pixel_sampler(pixel, self.width, index);
+                    let (pos, film_uv) = film_position(pixel, &mut s, self.width, self.height);
+                    aovs[..n].fill(Spectrum::ZERO);
+                    let l = match self.sensor.start_ray(film_uv, &mut s) {
+                        Some(ray) => moment.li_aovs(self.scene, &ray, &mut s, &mut aovs[..n]),
+                        None => Spectrum::ZERO,
+                    };
+                    if l.is_finite() && aovs[..n].iter().all(|a| a.is_finite()) {
+                        block.put_with_aovs(pos, l, &aovs[..n]);
                     } else {
                         dropped += 1;
                     }

@@ -127,6 +127,13 @@ impl RenderOutput {
         self.in_quantity(self.film.develop_stderr())
     }
 
+    /// The AOV layers the integrator wrote (`moment`'s), developed, each with its name and
+    /// channel names.
+    pub fn aov_images(&self) -> Vec<(crate::film::AovLayer, Image)> {
+        let layers = self.film.aov_layers();
+        layers.iter().enumerate().map(|(k, l)| (l.clone(), self.film.develop_aov(k))).collect()
+    }
+
     fn in_quantity(&self, image: Image) -> Image {
         match self.quantity {
             PixelQuantity::SurfaceIlluminance => image.to_illuminance(),
@@ -218,6 +225,9 @@ impl<'a> Plan<'a> {
             opts.sampler.unwrap_or(if meter { SamplerKind::Independent } else { sampler.kind });
         let mut film = sensor.film.clone();
         film.clear();
+        if !meter && opts.quantity == PixelQuantity::Sensor {
+            film = film.with_aov_layers(job.integrator.aov_layers());
+        }
         Ok(Plan {
             sensor,
             sampler,

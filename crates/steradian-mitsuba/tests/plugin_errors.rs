@@ -101,10 +101,10 @@ fn unknown_emitter_type() {
 #[test]
 fn unknown_sensor_type() {
     check(
-        &err(&scene("<sensor type=\"batch\"/>")),
+        &err(&scene("<sensor type=\"distant\"/>")),
         2,
         1,
-        &["the Mitsuba 3 sensor plugin 'batch' is not supported by steradian", "perspective"],
+        &["the Mitsuba 3 sensor plugin 'distant' is not supported by steradian", "perspective"],
     );
 }
 

@@ -1,4 +1,4 @@
-//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, meters) with their film (`hdrfilm`), reconstruction
+//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `batch`, meters) with their film (`hdrfilm`), reconstruction
 //! filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`).
 
@@ -9,7 +9,7 @@ use steradian::film::{
 use steradian::geometry::Transform;
 use steradian::sampling::{Sampler, SamplerKind};
 use steradian::sensor::{
-    FieldOfView, FovAxis, IrradianceMeter, Orthographic, Perspective, RadianceMeter, Sensor,
+    Batch, FieldOfView, FovAxis, IrradianceMeter, Orthographic, Perspective, RadianceMeter, Sensor,
     SensorKind, ThinLens,
 };
 
@@ -230,6 +230,7 @@ pub(super) const SENSORS: &Plugins<BuildSensor> = &[
     ("orthographic", orthographic_sensor),
     ("radiancemeter", radiancemeter),
     ("irradiancemeter", irradiancemeter),
+    ("batch", batch),
 ];
 
 /// Builds a sensor; `shape` is the enclosing shape for an `irradiancemeter`.
@@ -335,11 +336,13 @@ struct Projective {
     focus_distance: f32,
 }
 
-fn projective(node: &PluginNode, film: &Film) -> Result<Projective, LoadError> {
+/// The projective parameters for `film`, the field of view read against `fov_film`'s size
+/// (the film itself, except in a `batch`).
+fn projective(node: &PluginNode, film: &Film, fov_film: &Film) -> Result<Projective, LoadError> {
     let p = &node.props;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let fov = field_of_view(node)?;
-    let x_fov = fov.x_fov(film.width, film.height).map_err(at_param(node))?;
+    let x_fov = fov.x_fov(fov_film.width, fov_film.height).map_err(at_param(node))?;
     let aspect = film.width as f32 / film.height as f32;
     let near_clip = p.get_float("near_clip")?.unwrap_or(Perspective::DEFAULT_NEAR_CLIP);
     let far_clip = p.get_float("far_clip")?.unwrap_or(Perspective::DEFAULT_FAR_CLIP);
@@ -394,7 +397,15 @@ fn perspective(
     shape: Option<u32>,
 ) -> Result<SensorKind, LoadError> {
     not_in_shape(node, shape)?;
-    let c = projective(node, film)?;
+    perspective_camera(node, film, film)
+}
+
+fn perspective_camera(
+    node: &PluginNode,
+    film: &Film,
+    fov_film: &Film,
+) -> Result<SensorKind, LoadError> {
+    let c = projective(node, film, fov_film)?;
     let camera = Perspective::new(c.to_world, c.x_fov, c.aspect, c.near_clip, c.far_clip)
         .map_err(at_param(node))?;
     Ok(SensorKind::Perspective(camera))
@@ -402,7 +413,15 @@ fn perspective(
 
 fn thinlens(node: &PluginNode, film: &Film, shape: Option<u32>) -> Result<SensorKind, LoadError> {
     not_in_shape(node, shape)?;
-    let c = projective(node, film)?;
+    thinlens_camera(node, film, film)
+}
+
+fn thinlens_camera(
+    node: &PluginNode,
+    film: &Film,
+    fov_film: &Film,
+) -> Result<SensorKind, LoadError> {
+    let c = projective(node, film, fov_film)?;
     let aperture = node.props.get_float("aperture_radius")?.ok_or_else(|| {
         LoadError::at(&node.pos, format!("{}: missing 'aperture_radius'", node.desc()))
     })?;
@@ -437,4 +456,57 @@ fn orthographic(node: &PluginNode, film: &Film) -> Result<Orthographic, LoadErro
     let far = p.get_float("far_clip")?.unwrap_or(DEFAULT_FAR_CLIP);
     let aspect = film.width as f32 / film.height as f32;
     Orthographic::new(to_world, aspect, near, far).map_err(at_param(node))
+}
+
+/// `batch`: its nested cameras, each built for its share of the film (width / n × height);
+/// the width must be a multiple of their number. Nested meters, batches and films are
+/// refused (the batch's film is the one rendered). As in Mitsuba, which builds each camera
+/// for a default film (768 × 576) before resizing it, a camera's `fov` is read against that
+/// default size (it matters for `fov_axis` other than `x` and for `focal_length`), and the
+/// horizontal field of view it gives is kept on the camera's share of the film.
+fn batch(node: &PluginNode, film: &Film, shape: Option<u32>) -> Result<SensorKind, LoadError> {
+    not_in_shape(node, shape)?;
+    if let Some(s) = node.children_of(ObjectTag::Shape).first() {
+        return Err(LoadError::at(
+            s.pos(),
+            format!("{}: sensors attached to shapes cannot be batched", node.desc()),
+        ));
+    }
+    let nested = node.children_of(ObjectTag::Sensor);
+    if nested.is_empty() {
+        return Err(at(node)("needs at least one nested <sensor>".into()));
+    }
+    let n = nested.len() as u32;
+    if !film.width.is_multiple_of(n) {
+        return Err(at(node)(format!(
+            "the film's width {} must be a multiple of the number of sensors ({n})",
+            film.width
+        )));
+    }
+    let sub = Film::new(film.width / n, film.height, film.filter).map_err(at(node))?;
+    let fov_film = Film::default();
+    let mut cameras = Vec::with_capacity(nested.len());
+    for c in nested {
+        let child = &*c.node;
+        lookup(SENSORS, child)?;
+        if let Some(f) = child.children_of(ObjectTag::Film).first() {
+            return Err(LoadError::at(
+                f.pos(),
+                format!("{}: a batched camera renders into the batch's film", child.desc()),
+            ));
+        }
+        cameras.push(match child.plugin_type.as_str() {
+            "perspective" => perspective_camera(child, &sub, &fov_film)?,
+            "thinlens" => thinlens_camera(child, &sub, &fov_film)?,
+            "orthographic" => SensorKind::Orthographic(orthographic(child, &sub)?),
+            _ => {
+                return Err(LoadError::at(
+                    c.pos(),
+                    format!("{}: only cameras can be batched, not {}", node.desc(), child.desc()),
+                ))
+            }
+        });
+        child.check_all_used()?;
+    }
+    Ok(SensorKind::Batch(Batch { cameras }))
 }

@@ -1,6 +1,7 @@
 //! Sensors: what measures the light. Cameras turn a film position into a ray; each sensor
 //! owns its film description and its sampler, as in Mitsuba 3.
 
+mod batch;
 mod fov;
 mod irradiancemeter;
 pub mod orthographic;
@@ -8,6 +9,7 @@ mod perspective;
 mod radiancemeter;
 mod thinlens;
 
+pub use batch::Batch;
 pub use fov::{FieldOfView, FovAxis};
 pub use irradiancemeter::IrradianceMeter;
 pub use orthographic::Orthographic;
@@ -29,6 +31,7 @@ pub enum SensorKind {
     Orthographic(Orthographic),
     RadianceMeter(RadianceMeter),
     IrradianceMeter(IrradianceMeter),
+    Batch(Batch),
 }
 
 /// The radiometric quantity a sensor reports.
@@ -65,12 +68,7 @@ impl Sensor {
     #[inline]
     pub fn camera_ray(&self, film_uv: Vec2, sampler: &mut PixelSampler) -> Option<Ray> {
         let aperture = sampler.next_2d();
-        match &self.kind {
-            SensorKind::Perspective(c) => Some(c.sample_ray(film_uv)),
-            SensorKind::ThinLens(c) => Some(c.sample_ray(film_uv, aperture)),
-            SensorKind::Orthographic(c) => Some(c.sample_ray(film_uv)),
-            SensorKind::RadianceMeter(_) | SensorKind::IrradianceMeter(_) => None,
-        }
+        self.kind.camera_ray_with(film_uv, aperture)
     }
 
     /// The ray a sample starts with, for cameras (through film position `film_uv`) and
@@ -80,9 +78,10 @@ impl Sensor {
         match &self.kind {
             SensorKind::RadianceMeter(m) => Some(m.ray()),
             SensorKind::IrradianceMeter(_) => None,
-            SensorKind::Perspective(_) | SensorKind::ThinLens(_) | SensorKind::Orthographic(_) => {
-                self.camera_ray(film_uv, sampler)
-            }
+            SensorKind::Perspective(_)
+            | SensorKind::ThinLens(_)
+            | SensorKind::Orthographic(_)
+            | SensorKind::Batch(_) => self.camera_ray(film_uv, sampler),
         }
     }
 
@@ -92,6 +91,7 @@ impl Sensor {
             SensorKind::Perspective(_)
             | SensorKind::ThinLens(_)
             | SensorKind::Orthographic(_)
+            | SensorKind::Batch(_)
             | SensorKind::RadianceMeter(_) => Quantity::Radiance,
             SensorKind::IrradianceMeter(_) => Quantity::Irradiance,
         }
@@ -101,6 +101,21 @@ impl Sensor {
     /// reconstruction filter plays no part and every sample has weight 1.
     pub fn is_meter(&self) -> bool {
         matches!(self.kind, SensorKind::RadianceMeter(_) | SensorKind::IrradianceMeter(_))
+    }
+}
+
+impl SensorKind {
+    /// For cameras, the ray through film position `film_uv` with the 2-D aperture sample
+    /// `aperture` (used by a thin lens); `None` for meters.
+    #[inline]
+    pub fn camera_ray_with(&self, film_uv: Vec2, aperture: Vec2) -> Option<Ray> {
+        match self {
+            SensorKind::Perspective(c) => Some(c.sample_ray(film_uv)),
+            SensorKind::ThinLens(c) => Some(c.sample_ray(film_uv, aperture)),
+            SensorKind::Orthographic(c) => Some(c.sample_ray(film_uv)),
+            SensorKind::Batch(b) => b.sample_ray(film_uv, aperture),
+            SensorKind::RadianceMeter(_) | SensorKind::IrradianceMeter(_) => None,
+        }
     }
 }
 

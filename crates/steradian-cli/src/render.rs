@@ -217,11 +217,11 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if aovs.is_empty() {
         write_exr(&output, &image)?;
     } else {
-        // `moment`: the image's R, G, B, then each AOV layer's channels (Mitsuba's layout)
-        let mut layers = vec![ExrLayer { prefix: "", channels: ["R", "G", "B"], image: &image }];
+        // `moment`, `aov`: the image's R, G, B, then each AOV layer's channels (Mitsuba's layout)
+        let mut layers = vec![ExrLayer { prefix: "", channels: &["R", "G", "B"], image: &image }];
         layers.extend(aovs.iter().map(|(layer, img)| ExrLayer {
             prefix: &layer.name,
-            channels: layer.channels,
+            channels: &layer.channels,
             image: img,
         }));
         write_exr_channels(&output, &layers, ComponentFormat::Float32)?;

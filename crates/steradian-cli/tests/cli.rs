@@ -279,8 +279,8 @@ fn moment_writes_its_layers() {
     ok(&dir, &["render", "m.xml", "-o", "m.exr", "--spp", "16", "--quiet"]);
     let path = dir.join("m.exr");
     let image = read(&path);
-    let m1 = steradian::film::read_exr_channels(&path, ["pt.X", "pt.Y", "pt.Z"]).unwrap();
-    let m2 = steradian::film::read_exr_channels(&path, ["m2_pt.X", "m2_pt.Y", "m2_pt.Z"]).unwrap();
+    let m1 = steradian::film::read_exr_channels(&path, &["pt.X", "pt.Y", "pt.Z"]).unwrap();
+    let m2 = steradian::film::read_exr_channels(&path, &["m2_pt.X", "m2_pt.Y", "m2_pt.Z"]).unwrap();
     for ((rgb, xyz), sq) in image.data.chunks(3).zip(m1.data.chunks(3)).zip(m2.data.chunks(3)) {
         let y = 0.212671 * rgb[0] + 0.715160 * rgb[1] + 0.072169 * rgb[2];
         assert!((xyz[1] - y).abs() <= 1e-5 * y.max(1e-3), "{xyz:?} vs {rgb:?}");

@@ -27,7 +27,7 @@ fn layers(out: &RenderOutput, name: &str) -> (Image, Image) {
     let ours = out.aov_images().into_iter().find(|(l, _)| l.name == name).expect(name).1;
     let ch = ["X", "Y", "Z"].map(|c| format!("{name}.{c}"));
     let path = data("moment-aov.exr");
-    let theirs = read_exr_channels(&path, [&ch[0], &ch[1], &ch[2]]).unwrap();
+    let theirs = read_exr_channels(&path, &[&ch[0], &ch[1], &ch[2]]).unwrap();
     (ours, theirs)
 }
 

@@ -72,7 +72,7 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
         ("bsdf", "hair"),
         ("bsdf", "polarizer"),
         ("integrator", "ptracer"),
-        ("integrator", "aov"),
+        ("integrator", "volpath"),
     ] {
         let e = err(&scene(&format!("<{tag} type=\"{ty}\"/>")));
         let want = format!("the Mitsuba 3 {tag} plugin '{ty}' is not supported by steradian");

@@ -1,4 +1,4 @@
-//! Integrator plugins: `path`, `direct`, `depth`, `moment`.
+//! Integrator plugins: `path`, `direct`, `depth`, `moment`, `aov`.
 
 use steradian::emitter::LightSelection;
 use steradian::integrator::{
@@ -6,7 +6,8 @@ use steradian::integrator::{
     DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
 };
 use steradian::integrator::{
-    DepthIntegrator, DirectIntegrator, Integrator, MomentIntegrator, PathTracer,
+    AovField, AovIntegrator, DepthIntegrator, DirectIntegrator, Integrator, MomentIntegrator,
+    PathTracer,
 };
 
 use super::{at_param, lookup, Plugins};
@@ -50,7 +51,7 @@ type BuildIntegrator = fn(&PluginNode) -> Result<Integrator, LoadError>;
 
 /// Every integrator plugin, by Mitsuba `type`.
 pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> =
-    &[("path", path), ("direct", direct), ("depth", depth), ("moment", moment)];
+    &[("path", path), ("direct", direct), ("depth", depth), ("moment", moment), ("aov", aov)];
 
 pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
     let integrator = lookup(INTEGRATORS, node)?(node)?;
@@ -108,12 +109,21 @@ fn depth(_: &PluginNode) -> Result<Integrator, LoadError> {
     Ok(Integrator::Depth(DepthIntegrator))
 }
 
-/// `moment`: its nested integrators (at least one, at most 8), each named by its XML `name`
-/// or, unnamed, `_arg_<i>` (i counting the unnamed ones), as Mitsuba names them. A nested
-/// `path` without `branches` traces one path per sample (integrator/moment.rs).
+/// `moment`: one to eight nested integrators ([`nested_integrators`]).
 fn moment(node: &PluginNode) -> Result<Integrator, LoadError> {
+    let nested = nested_integrators(node, 1)?;
+    Ok(Integrator::Moment(MomentIntegrator { nested }))
+}
+
+/// The nested integrators of `moment` or `aov` (at least `min`, at most 8), each named by its
+/// XML `name` or, unnamed, `_arg_<i>` (i counting the unnamed ones), as Mitsuba names them. A
+/// nested `path` without `branches` traces one path per sample (integrator/moment.rs).
+fn nested_integrators(
+    node: &PluginNode,
+    min: usize,
+) -> Result<Vec<(String, Integrator)>, LoadError> {
     let children = node.children_of(crate::tree::ObjectTag::Integrator);
-    if children.is_empty() {
+    if children.len() < min {
         return Err(super::at(node)("needs at least one nested <integrator>".into()));
     }
     const MAX_NESTED: usize = 8;
@@ -126,8 +136,11 @@ fn moment(node: &PluginNode) -> Result<Integrator, LoadError> {
     let mut unnamed = 0;
     let mut nested = Vec::with_capacity(children.len());
     for c in children {
-        if c.node.plugin_type == "moment" {
-            return Err(LoadError::at(c.pos(), "a moment integrator cannot nest another"));
+        if matches!(c.node.plugin_type.as_str(), "moment" | "aov") {
+            return Err(LoadError::at(
+                c.pos(),
+                format!("{} cannot nest another {}", node.desc(), c.node.desc()),
+            ));
         }
         let mut integrator = build(&c.node)?;
         if let Integrator::Path(p) = &mut integrator {
@@ -144,5 +157,46 @@ fn moment(node: &PluginNode) -> Result<Integrator, LoadError> {
         };
         nested.push((name, integrator));
     }
-    Ok(Integrator::Moment(MomentIntegrator { nested }))
+    Ok(nested)
+}
+
+/// `aov`: the `aovs` list of `name:type` pairs (integrator/aov.rs) and optional nested
+/// integrators; at most 16 layers in all.
+fn aov(node: &PluginNode) -> Result<Integrator, LoadError> {
+    let p = &node.props;
+    let pos = p.position("aovs").unwrap_or(&node.pos).clone();
+    let list = p.get_string("aovs")?.ok_or_else(|| {
+        LoadError::at(&node.pos, format!("{}: missing 'aovs' (name:type, ...)", node.desc()))
+    })?;
+    let bad = |msg: String| LoadError::at(&pos, format!("{}: {msg}", node.desc()));
+    let mut fields = Vec::new();
+    for token in list.split(',').map(str::trim).filter(|t| !t.is_empty()) {
+        let Some((name, ty)) =
+            token.split_once(':').filter(|(n, t)| !n.is_empty() && !t.is_empty())
+        else {
+            return Err(bad(format!("invalid AOV \"{token}\": expected name:type")));
+        };
+        let field = match ty {
+            "boundary_test" | "duv_dx" | "duv_dy" => {
+                return Err(bad(format!("the AOV type \"{ty}\" is not supported by steradian")));
+            }
+            _ => AovField::parse(ty).ok_or_else(|| {
+                bad(format!(
+                    "invalid AOV type \"{ty}\" (albedo, depth, position, uv, geo_normal, \
+                     sh_normal, dp_du, dp_dv, prim_index or shape_index)"
+                ))
+            })?,
+        };
+        fields.push((name.to_string(), field));
+    }
+    let nested = nested_integrators(node, 0)?;
+    let a = AovIntegrator { fields, nested };
+    let layers = a.aov_layers().len();
+    const MAX_LAYERS: usize = 16;
+    if layers > MAX_LAYERS {
+        return Err(bad(format!(
+            "{layers} layers, at most {MAX_LAYERS} (2 per nested integrator)"
+        )));
+    }
+    Ok(Integrator::Aov(a))
 }

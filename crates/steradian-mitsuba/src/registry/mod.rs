@@ -116,7 +116,6 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     (
         "integrator",
         &[
-            "aov",
             "ptracer",
             "stokes",
             "volpath",

@@ -214,6 +214,23 @@ impl Bsdf {
         }
     }
 
+    /// The diffuse reflectance seen from `wo` (Mitsuba's `eval_diffuse_reflectance`, the
+    /// `aov` integrator's `albedo`): the diffuse albedo parameter where the model has one
+    /// (`diffuse`, the plastics' `diffuse_reflectance`, the principled `base_color`; a bump or
+    /// normal map's nested BSDF's), else π·ρ(wo, n) (0 for delta BSDFs), Mitsuba's default.
+    pub fn diffuse_reflectance(&self, sp: &ShadingPoint, wo: Vec3) -> Spectrum {
+        match self {
+            Bsdf::Diffuse(b) => b.reflectance.eval(sp.uv),
+            Bsdf::Plastic(b) => b.diffuse_reflectance.eval(sp.uv),
+            Bsdf::RoughPlastic(b) => b.diffuse_reflectance.eval(sp.uv),
+            Bsdf::Principled(b) => b.base_color.eval(sp.uv),
+            Bsdf::PrincipledThin(b) => b.base_color.eval(sp.uv),
+            Bsdf::BumpMap(b) => b.nested.diffuse_reflectance(sp, wo),
+            Bsdf::NormalMap(b) => b.nested.diffuse_reflectance(sp, wo),
+            _ => self.eval(sp, wo, Vec3::Z) * std::f32::consts::PI,
+        }
+    }
+
     /// Mitsuba's BSDF for a shape that has none: `diffuse` with reflectance 0.5.
     pub fn default_diffuse() -> Bsdf {
         Bsdf::Diffuse(Diffuse::new(Spectrum::splat(Diffuse::DEFAULT_REFLECTANCE).into()))

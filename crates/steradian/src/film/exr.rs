@@ -34,17 +34,17 @@ pub fn write_exr_layers_as(
 ) -> Result<(), String> {
     let layers: Vec<ExrLayer> = layers
         .iter()
-        .map(|&(prefix, image)| ExrLayer { prefix, channels: ["R", "G", "B"], image })
+        .map(|&(prefix, image)| ExrLayer { prefix, channels: &["R", "G", "B"], image })
         .collect();
     write_exr_channels(path, &layers, format)
 }
 
-/// One three-channel layer of an EXR file: channels `<prefix>.<channel>` (just `<channel>`
-/// for the prefix `""`).
+/// One layer of an EXR file: the first one to three channels of `image`, named
+/// `<prefix>.<channel>` (just `<channel>` for the prefix `""`).
 #[derive(Clone, Copy, Debug)]
 pub struct ExrLayer<'a> {
     pub prefix: &'a str,
-    pub channels: [&'a str; 3],
+    pub channels: &'a [&'a str],
     pub image: &'a Image,
 }
 
@@ -71,6 +71,9 @@ pub fn write_exr_channels(
                 img.width, img.height
             )));
         }
+        if layer_channels.is_empty() || layer_channels.len() > 3 {
+            return Err(err(format!("layer \"{prefix}\" must have 1 to 3 channels")));
+        }
         for (c, ch) in layer_channels.iter().enumerate() {
             let name = if prefix.is_empty() { ch.to_string() } else { format!("{prefix}.{ch}") };
             if names.contains(&name) {
@@ -92,24 +95,28 @@ pub fn write_exr_channels(
 /// Reads the RGB channels (`R`, `G`, `B`, float16, float32 or uint32; any compression) of an
 /// EXR file. The first layer (part) holding all three is used; an error if none does.
 pub fn read_exr(path: &Path) -> Result<Image, String> {
-    read_exr_channels(path, ["R", "G", "B"])
+    read_exr_channels(path, &["R", "G", "B"])
 }
 
-/// Reads three named channels (e.g. a `moment` AOV's `m2_path.X`, `m2_path.Y`, `m2_path.Z`)
-/// of an EXR file into an [`Image`], from the first layer (part) holding all three.
-pub fn read_exr_channels(path: &Path, names: [&str; 3]) -> Result<Image, String> {
+/// Reads one to three named channels (e.g. a `moment` AOV's `m2_path.X`, `m2_path.Y`,
+/// `m2_path.Z`) of an EXR file into the first channels of an [`Image`] (the others 0), from
+/// the first layer (part) holding all of them.
+pub fn read_exr_channels(path: &Path, names: &[&str]) -> Result<Image, String> {
     let err = |msg: String| format!("cannot read EXR {}: {msg}", path.display());
+    if names.is_empty() || names.len() > 3 {
+        return Err(err(format!("1 to 3 channels can be read, not {}", names.len())));
+    }
     let image =
         ::exr::prelude::read_all_flat_layers_from_file(path).map_err(|e| err(e.to_string()))?;
     for layer in &image.layer_data {
-        let find = |name: &str| layer.channel_data.list.iter().find(|c| c.name.eq(name));
-        let (Some(r), Some(g), Some(b)) = (find(names[0]), find(names[1]), find(names[2])) else {
+        let find = |name: &&str| layer.channel_data.list.iter().find(|c| c.name.eq(name));
+        let Some(found) = names.iter().map(find).collect::<Option<Vec<_>>>() else {
             continue;
         };
         let (w, h) = (layer.size.width(), layer.size.height());
         let n = w * h;
         let mut data = vec![0.0f32; 3 * n];
-        for (c, ch) in [r, g, b].into_iter().enumerate() {
+        for (c, ch) in found.into_iter().enumerate() {
             if ch.sample_data.len() != n {
                 return Err(err(format!(
                     "channel {} has {} samples, expected {n} (subsampled channels are not supported)",
@@ -123,7 +130,7 @@ pub fn read_exr_channels(path: &Path, names: [&str; 3]) -> Result<Image, String>
         }
         return Image::from_data(w as u32, h as u32, data).map_err(err);
     }
-    Err(err(format!("no layer with channels {}, {} and {}", names[0], names[1], names[2])))
+    Err(err(format!("no layer with the channels {}", names.join(", "))))
 }
 
 #[cfg(test)]
@@ -237,7 +244,7 @@ mod tests {
         );
         img.write().to_file(&q).unwrap();
         let e = read_exr(&q).unwrap_err();
-        assert!(e.contains("R, G and B"), "{e}");
+        assert!(e.contains("the channels R, G, B"), "{e}");
         for f in [corrupt, p, q] {
             std::fs::remove_file(f).ok();
         }

@@ -73,12 +73,13 @@ pub struct Film {
     dropped: u64,
 }
 
-/// An extra three-channel image an integrator writes beside the radiance (Mitsuba's AOVs):
-/// its EXR channels are `<name>.<channel>`.
+/// An extra image of one to three channels an integrator writes beside the radiance
+/// (Mitsuba's AOVs): its EXR channels are `<name>.<channel>`; the film keeps three values per
+/// layer and the unnamed ones stay 0.
 #[derive(Clone, Debug, PartialEq)]
 pub struct AovLayer {
     pub name: String,
-    pub channels: [&'static str; 3],
+    pub channels: Vec<&'static str>,
 }
 
 impl Default for Film {

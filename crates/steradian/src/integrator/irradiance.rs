@@ -44,7 +44,10 @@ fn reflected_only(integrator: &Integrator) -> Option<Integrator> {
         }
         // refused by the render plan (Integrator::estimates_light)
         Integrator::Depth(_) => None,
-        Integrator::Moment(m) => m.nested.first().and_then(|(_, i)| reflected_only(i)),
+        Integrator::Moment(super::MomentIntegrator { nested })
+        | Integrator::Aov(super::AovIntegrator { nested, .. }) => {
+            nested.first().and_then(|(_, i)| reflected_only(i))
+        }
     }
 }
 

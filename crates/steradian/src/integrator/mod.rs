@@ -2,6 +2,7 @@
 //! at a surface point), over a [`Scene`]. The render driver (`crate::render`) turns them into
 //! images.
 
+mod aov;
 mod branching;
 mod depth;
 mod direct;
@@ -10,6 +11,7 @@ mod mis;
 mod moment;
 mod path;
 
+pub use aov::{AovField, AovIntegrator};
 pub use branching::{pilot, Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
 pub use depth::DepthIntegrator;
 pub use direct::DirectIntegrator;
@@ -34,6 +36,7 @@ pub enum Integrator {
     Direct(DirectIntegrator),
     Depth(DepthIntegrator),
     Moment(MomentIntegrator),
+    Aov(AovIntegrator),
 }
 
 impl Integrator {
@@ -43,8 +46,9 @@ impl Integrator {
             Integrator::Path(p) => p.light_selection,
             Integrator::Direct(d) => d.light_selection,
             Integrator::Depth(_) => LightSelection::default(),
-            Integrator::Moment(m) => {
-                m.nested.first().map_or(LightSelection::default(), |(_, i)| i.light_selection())
+            Integrator::Moment(MomentIntegrator { nested })
+            | Integrator::Aov(AovIntegrator { nested, .. }) => {
+                nested.first().map_or(LightSelection::default(), |(_, i)| i.light_selection())
             }
         }
     }
@@ -57,8 +61,9 @@ impl Integrator {
             Integrator::Path(i) => i.li(scene, ray, sampler),
             Integrator::Direct(i) => i.li(scene, ray, sampler),
             Integrator::Depth(i) => i.li(scene, ray),
-            Integrator::Moment(m) => {
-                m.nested.first().map_or(Spectrum::ZERO, |(_, i)| i.li(scene, ray, sampler))
+            Integrator::Moment(MomentIntegrator { nested })
+            | Integrator::Aov(AovIntegrator { nested, .. }) => {
+                nested.first().map_or(Spectrum::ZERO, |(_, i)| i.li(scene, ray, sampler))
             }
         }
     }
@@ -68,7 +73,10 @@ impl Integrator {
     pub fn estimates_light(&self) -> bool {
         match self {
             Integrator::Depth(_) => false,
-            Integrator::Moment(m) => m.nested.first().is_some_and(|(_, i)| i.estimates_light()),
+            Integrator::Moment(MomentIntegrator { nested })
+            | Integrator::Aov(AovIntegrator { nested, .. }) => {
+                nested.first().is_some_and(|(_, i)| i.estimates_light())
+            }
             _ => true,
         }
     }
@@ -77,6 +85,7 @@ impl Integrator {
     pub fn aov_layers(&self) -> Vec<crate::film::AovLayer> {
         match self {
             Integrator::Moment(m) => m.aov_layers(),
+            Integrator::Aov(a) => a.aov_layers(),
             _ => Vec::new(),
         }
     }

@@ -31,10 +31,13 @@ pub struct MomentIntegrator {
 impl MomentIntegrator {
     /// The AOV layers it writes: every integrator's mean, then every one's second moment.
     pub fn aov_layers(&self) -> Vec<AovLayer> {
-        let xyz = ["X", "Y", "Z"];
-        let means = self.nested.iter().map(|(n, _)| AovLayer { name: n.clone(), channels: xyz });
-        let m2 =
-            self.nested.iter().map(|(n, _)| AovLayer { name: format!("m2_{n}"), channels: xyz });
+        let xyz = vec!["X", "Y", "Z"];
+        let means =
+            self.nested.iter().map(|(n, _)| AovLayer { name: n.clone(), channels: xyz.clone() });
+        let m2 = self
+            .nested
+            .iter()
+            .map(|(n, _)| AovLayer { name: format!("m2_{n}"), channels: xyz.clone() });
         means.chain(m2).collect()
     }
 

@@ -29,8 +29,8 @@ pub(super) struct BlockRenderer<'a> {
     pub aov_layers: usize,
 }
 
-/// The most AOV layers a sample carries (`moment` with 8 nested integrators); the loader
-/// refuses more.
+/// The most AOV layers a sample carries (`moment` with 8 nested integrators, `aov` with 16
+/// layers in all); the loader refuses more.
 pub const MAX_AOV_LAYERS: usize = 16;
 
 /// A rendered work item.
@@ -99,7 +99,8 @@ impl<'a> BlockRenderer<'a> {
         Some(RenderedBlock { block, dropped })
     }
 
-    /// [`render`](Self::render) for an integrator that writes AOVs (`moment`, cameras only).
+    /// [`render`](Self::render) for an integrator that writes AOVs (`moment`, `aov`; cameras
+    /// only).
     fn render_with_aovs(
         &self,
         item: &WorkItem,
@@ -107,9 +108,7 @@ impl<'a> BlockRenderer<'a> {
         cancelled: impl Fn() -> bool,
     ) -> Option<RenderedBlock> {
         let WorkItem { offset, size, s0, s1 } = *item;
-        let Integrator::Moment(moment) = self.integrator else {
-            unreachable!("only moment writes AOVs")
-        };
+
         let n = self.aov_layers.min(MAX_AOV_LAYERS);
         let mut aovs = [Spectrum::ZERO; MAX_AOV_LAYERS];
         let mut dropped = 0u64;
@@ -124,7 +123,15 @@ impl<'a> BlockRenderer<'a> {
                     let (pos, film_uv) = film_position(pixel, &mut s, self.width, self.height);
                     aovs[..n].fill(Spectrum::ZERO);
                     let l = match self.sensor.start_ray(film_uv, &mut s) {
-                        Some(ray) => moment.li_aovs(self.scene, &ray, &mut s, &mut aovs[..n]),
+                        Some(ray) => match self.integrator {
+                            Integrator::Moment(m) => {
+                                m.li_aovs(self.scene, &ray, &mut s, &mut aovs[..n])
+                            }
+                            Integrator::Aov(a) => {
+                                a.li_aovs(self.scene, &ray, &mut s, &mut aovs[..n])
+                            }
+                            _ => unreachable!("only moment and aov write AOVs"),
+                        },
                         None => Spectrum::ZERO,
                     };
                     if l.is_finite() && aovs[..n].iter().all(|a| a.is_finite()) {

@@ -88,7 +88,10 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         quantity,
         branches: match &integrator {
             Integrator::Path(p) => Some(p.branches.count()),
-            Integrator::Direct(_) | Integrator::Depth(_) | Integrator::Moment(_) => None,
+            Integrator::Direct(_)
+            | Integrator::Depth(_)
+            | Integrator::Moment(_)
+            | Integrator::Aov(_) => None,
         },
         pilot: pilot_run,
         spp: spp_done,

@@ -125,3 +125,30 @@ def test_gil_is_released_while_rendering():
     # with the GIL held by the render, this thread could not tick until it ended
     gaps = np.diff([start] + ticks)
     assert len(ticks) > 20 and gaps.max() < max(0.25, elapsed / 4), (len(ticks), gaps.max(), elapsed)
+
+
+def test_moment_and_aov_layers_come_after_rgb_as_in_mitsuba():
+    # in a uniform sky of radiance L every sample is L: the path tracer's mean XYZ layer is
+    # the XYZ of L, its second moment the square, and an aov depth layer is 0 (no surface)
+    moment = SKY.replace(
+        '<integrator type="path"/>',
+        '<integrator type="moment"><integrator type="path" name="pp"/></integrator>',
+    )
+    scene = steradian.load_string(moment)
+    names = scene.channel_names()
+    assert names == ["R", "G", "B", "pp.X", "pp.Y", "pp.Z", "m2_pp.X", "m2_pp.Y", "m2_pp.Z"]
+    image = scene.render(spp=4)
+    assert image.shape == (5, 7, 9)
+    y = 0.212671 * 0.25 + 0.715160 * 1.5 + 0.072169 * 3
+    assert np.allclose(image[..., 4], y, rtol=1e-5)
+    assert np.allclose(image[..., 7], y * y, rtol=1e-5)
+    aov = SKY.replace(
+        '<integrator type="path"/>',
+        '<integrator type="aov"><string name="aovs" value="dd:depth"/><integrator type="path"/></integrator>',
+    )
+    scene = steradian.load_string(aov)
+    assert scene.channel_names() == ["R", "G", "B", "_arg_0.R", "_arg_0.G", "_arg_0.B", "_arg_0.A", "dd.T"]
+    image = scene.render(spp=2)
+    assert image.shape == (5, 7, 8)
+    assert np.allclose(image[..., :3], [0.25, 1.5, 3], rtol=1e-6)
+    assert np.all(image[..., 6] == 1.0) and np.all(image[..., 7] == 0.0)

@@ -1,10 +1,10 @@
-//! Images to and from NumPy arrays of shape (H, W, 3), float32, through NumPy's Python API
-//! (no compiled NumPy dependency): one copy each way.
+//! Images to and from NumPy arrays of shape (H, W, 3) (and (H, W, 3 + k) with AOV layers),
+//! float32, through NumPy's Python API (no compiled NumPy dependency): one copy each way.
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::{PyByteArray, PyBytes};
-use steradian::film::Image;
+use steradian::film::{AovLayer, Image};
 
 /// A float32 array (H, W, 3) holding a copy of `image` (row 0 = top).
 pub fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyAny>> {
@@ -17,6 +17,33 @@ pub fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyAn
     let np = py.import("numpy")?;
     let flat = np.call_method1("frombuffer", (buffer, np.getattr("float32")?))?;
     flat.call_method1("reshape", ((image.height as usize, image.width as usize, 3usize),))
+}
+
+/// A float32 array (H, W, 3 + k) of `image`'s R, G, B followed by each AOV layer's channels
+/// (Mitsuba's `mi.render` layout for `moment` and `aov`).
+pub fn to_channels_array<'py>(
+    py: Python<'py>,
+    image: &Image,
+    layers: &[(AovLayer, Image)],
+) -> PyResult<Bound<'py, PyAny>> {
+    let n = 3 + layers.iter().map(|(l, _)| l.channels.len()).sum::<usize>();
+    let pixels = image.width as usize * image.height as usize;
+    let mut values = Vec::with_capacity(pixels * n);
+    for i in 0..pixels {
+        values.extend_from_slice(&image.data[3 * i..3 * i + 3]);
+        for (l, img) in layers {
+            values.extend_from_slice(&img.data[3 * i..3 * i + l.channels.len()]);
+        }
+    }
+    let buffer = PyByteArray::new_with(py, values.len() * 4, |bytes| {
+        for (b, v) in bytes.chunks_exact_mut(4).zip(&values) {
+            b.copy_from_slice(&v.to_ne_bytes());
+        }
+        Ok(())
+    })?;
+    let np = py.import("numpy")?;
+    let flat = np.call_method1("frombuffer", (buffer, np.getattr("float32")?))?;
+    flat.call_method1("reshape", ((image.height as usize, image.width as usize, n),))
 }
 
 /// An image from any array-like of shape (H, W, 3), converted to float32.

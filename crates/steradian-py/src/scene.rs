@@ -9,7 +9,7 @@ use pyo3::types::{PyBool, PyDict};
 use steradian::render::{measure, render, Job, PixelQuantity, RenderOptions};
 use steradian::sensor::Quantity;
 
-use crate::array::to_array;
+use crate::array::{to_array, to_channels_array};
 use crate::errors::{render_error, scene_error};
 use crate::interrupt::run_interruptible;
 
@@ -128,6 +128,10 @@ impl Scene {
     /// - `progress`: called as `progress(samples_done, samples_total)` on the calling thread
     ///   while rendering; an exception it raises stops the render and propagates.
     ///
+    /// With a `moment` or `aov` integrator a radiance render of a camera returns shape
+    /// (H, W, 3 + k): R, G, B and then the integrator's layers, as `mi.render` does; their
+    /// names are `channel_names()`.
+    ///
     /// The GIL is released while rendering. Ctrl-C stops the render and raises
     /// `KeyboardInterrupt`.
     #[pyo3(
@@ -165,7 +169,12 @@ impl Scene {
             render(scene, &opts)
         })?
         .map_err(render_error)?;
-        to_array(py, &out.image())
+        let aovs = out.aov_images();
+        if aovs.is_empty() {
+            to_array(py, &out.image())
+        } else {
+            to_channels_array(py, &out.image(), &aovs)
+        }
     }
 
     /// Reads a sensor: its value per RGB channel with the standard error of that value, in the
@@ -207,6 +216,22 @@ impl Scene {
     #[getter]
     fn sensor_ids(&self) -> Vec<String> {
         self.inner.scene.sensors.iter().map(|s| s.id.clone()).collect()
+    }
+
+    /// The channel names of a radiance render of a sensor (index or id; default the first):
+    /// `["R", "G", "B"]`, followed for a camera under `moment` or `aov` by each layer's
+    /// channels (`"pp.X"`, `"m2_pp.X"`, `"dd.T"`, ...), in the order `render` returns them.
+    #[pyo3(signature = (sensor=None))]
+    fn channel_names(&self, sensor: Option<SensorArg>) -> PyResult<Vec<String>> {
+        let i = self.sensor(sensor)?;
+        let meter = self.inner.scene.sensors.get(i).is_some_and(|s| s.is_meter());
+        let mut names: Vec<String> = ["R", "G", "B"].map(String::from).to_vec();
+        if !meter {
+            for l in self.inner.integrator.aov_layers() {
+                names.extend(l.channels.iter().map(|c| format!("{}.{c}", l.name)));
+            }
+        }
+        Ok(names)
     }
 
     /// The film size (width, height) in pixels of a sensor (index or id; default the first).

@@ -113,7 +113,7 @@ impl AovIntegrator {
     ) -> Spectrum {
         let si = scene.intersect(ray);
         let mut first = Spectrum::ZERO;
-        let seen = si.is_some() || scene.emitters.iter().any(|e| e.is_environment());
+        let seen = si.is_some() || scene.environment.is_some();
         for (i, (_, integrator)) in self.nested.iter().enumerate() {
             let l = integrator.li(scene, ray, sampler);
             if i == 0 {

@@ -170,5 +170,18 @@ impl Emitter {
     }
 }
 
+/// The unit direction from `p` towards a light at `position`, the distance and its square
+/// (m, m²); `None` when the two coincide.
+#[inline]
+pub(crate) fn towards(position: Vec3, p: Vec3) -> Option<(Vec3, f32, f32)> {
+    let d = position - p;
+    let dist2 = d.length_squared();
+    if !crate::geometry::is_positive(dist2) {
+        return None;
+    }
+    let dist = dist2.sqrt();
+    Some((d / dist, dist, dist2))
+}
+
 #[cfg(test)]
 mod tests;

@@ -11,7 +11,6 @@
 use glam::Vec3;
 
 use super::{EmitterSample, Support};
-use crate::geometry::is_positive;
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -30,14 +29,9 @@ impl PointLight {
 
     #[inline]
     pub fn sample_direction(&self, p: Vec3) -> Option<EmitterSample> {
-        let d = self.position - p;
-        let dist2 = d.length_squared();
-        if !is_positive(dist2) {
-            return None;
-        }
-        let dist = dist2.sqrt();
+        let (wi, dist, dist2) = super::towards(self.position, p)?;
         Some(EmitterSample {
-            wi: d / dist,
+            wi,
             dist,
             pdf: 1.0,
             weight: self.intensity / dist2,

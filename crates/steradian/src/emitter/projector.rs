@@ -81,13 +81,7 @@ impl Projector {
         if !(uv.cmpge(Vec2::ZERO).all() && uv.cmple(Vec2::ONE).all()) {
             return None;
         }
-        let d = self.position - p;
-        let dist2 = d.length_squared();
-        if !is_positive(dist2) {
-            return None;
-        }
-        let dist = dist2.sqrt();
-        let wi = d / dist;
+        let (wi, dist, _) = super::towards(self.position, p)?;
         let cos = -self.axis.dot(wi);
         let e = self.irradiance.eval(uv);
         if !is_positive(cos) || e == Spectrum::ZERO {

@@ -18,7 +18,6 @@
 use glam::{Vec2, Vec3};
 
 use super::{EmitterSample, Support};
-use crate::geometry::is_positive;
 use crate::geometry::{Frame, Transform};
 use crate::param::ParamError;
 use crate::texture::Texture;
@@ -150,13 +149,7 @@ impl SpotLight {
 
     #[inline]
     pub fn sample_direction(&self, p: Vec3) -> Option<EmitterSample> {
-        let d = self.position - p;
-        let dist2 = d.length_squared();
-        if !is_positive(dist2) {
-            return None;
-        }
-        let dist = dist2.sqrt();
-        let wi = d / dist;
+        let (wi, dist, dist2) = super::towards(self.position, p)?;
         let i = self.intensity_towards(-wi);
         if i == Spectrum::ZERO {
             return None;

@@ -126,7 +126,8 @@ fn nested_integrators(
     if children.len() < min {
         return Err(super::at(node)("needs at least one nested <integrator>".into()));
     }
-    const MAX_NESTED: usize = 8;
+    // each nested integrator writes two layers (moment: mean and m2; aov: RGB and A)
+    const MAX_NESTED: usize = steradian::render::MAX_AOV_LAYERS / 2;
     if children.len() > MAX_NESTED {
         return Err(LoadError::at(
             children[MAX_NESTED].pos(),
@@ -192,7 +193,7 @@ fn aov(node: &PluginNode) -> Result<Integrator, LoadError> {
     let nested = nested_integrators(node, 0)?;
     let a = AovIntegrator { fields, nested };
     let layers = a.aov_layers().len();
-    const MAX_LAYERS: usize = 16;
+    const MAX_LAYERS: usize = steradian::render::MAX_AOV_LAYERS;
     if layers > MAX_LAYERS {
         return Err(bad(format!(
             "{layers} layers, at most {MAX_LAYERS} (2 per nested integrator)"

@@ -30,7 +30,7 @@ pub(super) struct BlockRenderer<'a> {
 }
 
 /// The most AOV layers a sample carries (`moment` with 8 nested integrators, `aov` with 16
-/// layers in all); the loader refuses more.
+/// layers in all); the loader refuses more, and so does the render plan.
 pub const MAX_AOV_LAYERS: usize = 16;
 
 /// A rendered work item.
@@ -59,15 +59,47 @@ impl<'a> BlockRenderer<'a> {
     /// The item's block, or `None` when `cancelled` turns true before it is finished (checked
     /// once per pixel row).
     pub fn render(&self, item: &WorkItem, cancelled: impl Fn() -> bool) -> Option<RenderedBlock> {
+        if self.aov_layers == 0 {
+            return self.render_samples(item, cancelled, &mut [], |s, film_uv, _| {
+                match self.quantity {
+                    PixelQuantity::Sensor => self.sensor_value(film_uv, s),
+                    PixelQuantity::SurfaceIrradiance | PixelQuantity::SurfaceIlluminance => {
+                        self.surface_irradiance(film_uv, s)
+                    }
+                }
+            });
+        }
+        // `moment`, `aov` (the plan gives AOV layers to camera radiance renders only)
+        let mut aovs = [Spectrum::ZERO; MAX_AOV_LAYERS];
+        let n = self.aov_layers;
+        self.render_samples(item, cancelled, &mut aovs[..n], |s, film_uv, aovs| {
+            aovs.fill(Spectrum::ZERO);
+            let Some(ray) = self.sensor.start_ray(film_uv, s) else { return Spectrum::ZERO };
+            match self.integrator {
+                Integrator::Moment(m) => m.li_aovs(self.scene, &ray, s, aovs),
+                Integrator::Aov(a) => a.li_aovs(self.scene, &ray, s, aovs),
+                _ => unreachable!("only moment and aov write AOVs"),
+            }
+        })
+    }
+
+    /// Every sample of the item: `estimate` gives a sample's value from its sampler and film
+    /// position, and fills `aovs` (empty without AOV layers); samples with a non-finite value
+    /// are dropped and counted.
+    #[inline(always)]
+    fn render_samples(
+        &self,
+        item: &WorkItem,
+        cancelled: impl Fn() -> bool,
+        aovs: &mut [Spectrum],
+        mut estimate: impl FnMut(&mut PixelSampler, Vec2, &mut [Spectrum]) -> Spectrum,
+    ) -> Option<RenderedBlock> {
         let WorkItem { offset, size, s0, s1 } = *item;
         let (width, height) = (self.width, self.height);
         // blocks as `Film::create_block` makes them (the film itself is borrowed for merging)
         let mut block =
             ImageBlock::with_clip(offset, size, &self.filter, [width as i64, height as i64])
                 .with_aov_layers(self.aov_layers);
-        if self.aov_layers > 0 {
-            return self.render_with_aovs(item, block, cancelled);
-        }
         let mut dropped = 0u64;
         for y in offset.y..offset.y + size.y {
             if cancelled() {
@@ -78,64 +110,13 @@ impl<'a> BlockRenderer<'a> {
                 for index in s0..s1 {
                     let mut s = self.sampler.pixel_sampler(pixel, width, index);
                     let (mut pos, film_uv) = film_position(pixel, &mut s, width, height);
-                    let l = match self.quantity {
-                        PixelQuantity::Sensor => self.sensor_value(film_uv, &mut s),
-                        PixelQuantity::SurfaceIrradiance | PixelQuantity::SurfaceIlluminance => {
-                            self.surface_irradiance(film_uv, &mut s)
-                        }
-                    };
+                    let l = estimate(&mut s, film_uv, aovs);
                     if self.meter {
                         // meters ignore the film position: equal weights
                         pos = pixel.as_vec2() + Vec2::splat(0.5);
                     }
-                    if l.is_finite() {
-                        block.put(pos, l);
-                    } else {
-                        dropped += 1;
-                    }
-                }
-            }
-        }
-        Some(RenderedBlock { block, dropped })
-    }
-
-    /// [`render`](Self::render) for an integrator that writes AOVs (`moment`, `aov`; cameras
-    /// only).
-    fn render_with_aovs(
-        &self,
-        item: &WorkItem,
-        mut block: ImageBlock,
-        cancelled: impl Fn() -> bool,
-    ) -> Option<RenderedBlock> {
-        let WorkItem { offset, size, s0, s1 } = *item;
-
-        let n = self.aov_layers.min(MAX_AOV_LAYERS);
-        let mut aovs = [Spectrum::ZERO; MAX_AOV_LAYERS];
-        let mut dropped = 0u64;
-        for y in offset.y..offset.y + size.y {
-            if cancelled() {
-                return None;
-            }
-            for x in offset.x..offset.x + size.x {
-                let pixel = UVec2::new(x, y);
-                for index in s0..s1 {
-                    let mut s = self.sampler.pixel_sampler(pixel, self.width, index);
-                    let (pos, film_uv) = film_position(pixel, &mut s, self.width, self.height);
-                    aovs[..n].fill(Spectrum::ZERO);
-                    let l = match self.sensor.start_ray(film_uv, &mut s) {
-                        Some(ray) => match self.integrator {
-                            Integrator::Moment(m) => {
-                                m.li_aovs(self.scene, &ray, &mut s, &mut aovs[..n])
-                            }
-                            Integrator::Aov(a) => {
-                                a.li_aovs(self.scene, &ray, &mut s, &mut aovs[..n])
-                            }
-                            _ => unreachable!("only moment and aov write AOVs"),
-                        },
-                        None => Spectrum::ZERO,
-                    };
-                    if l.is_finite() && aovs[..n].iter().all(|a| a.is_finite()) {
-                        block.put_with_aovs(pos, l, &aovs[..n]);
+                    if l.is_finite() && aovs.iter().all(|a| a.is_finite()) {
+                        block.put_with_aovs(pos, l, aovs);
                     } else {
                         dropped += 1;
                     }

@@ -17,6 +17,7 @@ mod merge;
 mod options;
 mod schedule;
 
+pub use block::MAX_AOV_LAYERS;
 pub use driver::render;
 pub use measure::{measure, Measurement};
 pub use options::{PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};

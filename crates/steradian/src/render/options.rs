@@ -226,7 +226,14 @@ impl<'a> Plan<'a> {
         let mut film = sensor.film.clone();
         film.clear();
         if !meter && opts.quantity == PixelQuantity::Sensor {
-            film = film.with_aov_layers(job.integrator.aov_layers());
+            let layers = job.integrator.aov_layers();
+            if layers.len() > super::MAX_AOV_LAYERS {
+                return Err(RenderError::BadOption {
+                    option: "integrator",
+                    reason: "writes more AOV layers than a sample carries (16)",
+                });
+            }
+            film = film.with_aov_layers(layers);
         }
         Ok(Plan {
             sensor,

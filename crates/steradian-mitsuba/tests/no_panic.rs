@@ -2,7 +2,7 @@
 
 mod common;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use steradian_mitsuba::parse_string;
 
@@ -15,6 +15,11 @@ impl Rng {
         self.0 ^= self.0 >> 27;
         self.0.wrapping_mul(0x2545_F491_4F6C_DD1D)
     }
+}
+
+/// The folder that a scene's includes resolve against.
+fn folder() -> PathBuf {
+    common::reference_scene("")
 }
 
 /// Every test scene: name and text.
@@ -30,12 +35,12 @@ fn scenes() -> Vec<(String, String)> {
 #[test]
 fn truncated_scenes_are_errors() {
     for (name, text) in scenes() {
-        assert!(parse_string(&text, Path::new("."), &[]).is_ok(), "{name} must parse whole");
+        assert!(parse_string(&text, &folder(), &[]).is_ok(), "{name} must parse whole");
         // Every prefix that cuts into the closing </scene>: the root is never closed.
         let end = text.rfind("</scene>").unwrap() + "</scene>".len();
         let bounds: Vec<usize> = (0..end).filter(|&i| text.is_char_boundary(i)).collect();
         for &cut in &bounds {
-            let r = std::panic::catch_unwind(|| parse_string(&text[..cut], Path::new("."), &[]));
+            let r = std::panic::catch_unwind(|| parse_string(&text[..cut], &folder(), &[]));
             match r {
                 Ok(res) => assert!(res.is_err(), "{name} truncated at {cut} parsed"),
                 Err(_) => panic!("{name} truncated at {cut} panicked"),
@@ -70,7 +75,7 @@ fn mutated_scenes_never_panic() {
             }
             let Ok(s) = String::from_utf8(bytes) else { continue };
             let r = std::panic::catch_unwind(|| {
-                let _ = parse_string(&s, Path::new("."), &[]);
+                let _ = parse_string(&s, &folder(), &[]);
             });
             assert!(r.is_ok(), "{name} mutated panicked:\n{s}");
         }

@@ -115,6 +115,10 @@ impl Scene {
             );
         }
         let accel = Accel::build(&shapes);
+        let mut sensors = desc.sensors;
+        for sensor in &mut sensors {
+            sensor.set_scene(&accel.bounds());
+        }
         let (light_pmf, light_cdf) =
             desc.light_selection.distribution(&desc.emitters, &shapes, accel.bounds());
         Ok(Scene {
@@ -126,7 +130,7 @@ impl Scene {
             bsdfs: desc.bsdfs,
             emitters: desc.emitters,
             environment: envs.first().copied(),
-            sensors: desc.sensors,
+            sensors,
             accel,
         })
     }

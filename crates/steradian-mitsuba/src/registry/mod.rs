@@ -227,7 +227,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
                 b.desc.emitters.push(e);
             }
             ObjectTag::Sensor => {
-                let s = sensors::build(node, None)?;
+                let s = sensors::build(&b, node, None)?;
                 b.desc.sensors.push(s);
             }
             ObjectTag::Texture => {

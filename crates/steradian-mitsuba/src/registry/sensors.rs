@@ -1,4 +1,4 @@
-//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `batch`, meters) with their film (`hdrfilm`), reconstruction
+//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `batch`, meters, `distant`) with their film (`hdrfilm`), reconstruction
 //! filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`).
 
@@ -9,12 +9,12 @@ use steradian::film::{
 use steradian::geometry::Transform;
 use steradian::sampling::{Sampler, SamplerKind};
 use steradian::sensor::{
-    Batch, FieldOfView, FovAxis, IrradianceMeter, Orthographic, Perspective, RadianceMeter, Sensor,
-    SensorKind, ThinLens,
+    Batch, Distant, DistantTarget, FieldOfView, FovAxis, IrradianceMeter, Orthographic,
+    Perspective, RadianceMeter, Sensor, SensorKind, ThinLens,
 };
 
-use super::{at, at_param, lookup, Plugins};
-use crate::error::LoadError;
+use super::{at, at_param, lookup, shapes, Builder, Plugins};
+use crate::error::{LoadError, LoadWarning};
 use crate::tree::{ObjectTag, PluginNode};
 
 fn single_child(node: &PluginNode, tag: ObjectTag) -> Result<Option<&PluginNode>, LoadError> {
@@ -221,7 +221,7 @@ fn parse_focal_length(node: &PluginNode, s: &str) -> Result<f32, LoadError> {
 
 /// Builds one sensor's kind from its node, given its film and, for a sensor declared inside
 /// a shape, that shape's index.
-type BuildSensor = fn(&PluginNode, &Film, Option<u32>) -> Result<SensorKind, LoadError>;
+type BuildSensor = fn(&Builder, &PluginNode, &Film, Option<u32>) -> Result<SensorKind, LoadError>;
 
 /// Every sensor plugin, by Mitsuba `type`.
 pub(super) const SENSORS: &Plugins<BuildSensor> = &[
@@ -231,10 +231,15 @@ pub(super) const SENSORS: &Plugins<BuildSensor> = &[
     ("radiancemeter", radiancemeter),
     ("irradiancemeter", irradiancemeter),
     ("batch", batch),
+    ("distant", distant),
 ];
 
 /// Builds a sensor; `shape` is the enclosing shape for an `irradiancemeter`.
-pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, LoadError> {
+pub(crate) fn build(
+    b: &Builder,
+    node: &PluginNode,
+    shape: Option<u32>,
+) -> Result<Sensor, LoadError> {
     let build_kind = lookup(SENSORS, node)?;
     let film = match single_child(node, ObjectTag::Film)? {
         Some(f) => build_film(f)?,
@@ -247,7 +252,7 @@ pub(crate) fn build(node: &PluginNode, shape: Option<u32>) -> Result<Sensor, Loa
         Some(s) => build_sampler(s)?,
         None => Sampler::default(),
     };
-    let kind = build_kind(node, &film, shape)?;
+    let kind = build_kind(b, node, &film, shape)?;
     node.check_all_used()?;
     Ok(Sensor { kind, film, sampler, id: node.id.clone().unwrap_or_default() })
 }
@@ -280,6 +285,7 @@ fn meter_film(node: &PluginNode, film: &Film) -> Result<(), LoadError> {
 }
 
 fn irradiancemeter(
+    _: &Builder,
     node: &PluginNode,
     film: &Film,
     shape: Option<u32>,
@@ -295,6 +301,7 @@ fn irradiancemeter(
 }
 
 fn radiancemeter(
+    _: &Builder,
     node: &PluginNode,
     film: &Film,
     shape: Option<u32>,
@@ -392,6 +399,7 @@ pub(crate) fn field_of_view(node: &PluginNode) -> Result<FieldOfView, LoadError>
 }
 
 fn perspective(
+    _: &Builder,
     node: &PluginNode,
     film: &Film,
     shape: Option<u32>,
@@ -411,7 +419,12 @@ fn perspective_camera(
     Ok(SensorKind::Perspective(camera))
 }
 
-fn thinlens(node: &PluginNode, film: &Film, shape: Option<u32>) -> Result<SensorKind, LoadError> {
+fn thinlens(
+    _: &Builder,
+    node: &PluginNode,
+    film: &Film,
+    shape: Option<u32>,
+) -> Result<SensorKind, LoadError> {
     not_in_shape(node, shape)?;
     thinlens_camera(node, film, film)
 }
@@ -439,6 +452,7 @@ fn thinlens_camera(
 }
 
 fn orthographic_sensor(
+    _: &Builder,
     node: &PluginNode,
     film: &Film,
     shape: Option<u32>,
@@ -464,7 +478,12 @@ fn orthographic(node: &PluginNode, film: &Film) -> Result<Orthographic, LoadErro
 /// for a default film (768 × 576) before resizing it, a camera's `fov` is read against that
 /// default size (it matters for `fov_axis` other than `x` and for `focal_length`), and the
 /// horizontal field of view it gives is kept on the camera's share of the film.
-fn batch(node: &PluginNode, film: &Film, shape: Option<u32>) -> Result<SensorKind, LoadError> {
+fn batch(
+    _: &Builder,
+    node: &PluginNode,
+    film: &Film,
+    shape: Option<u32>,
+) -> Result<SensorKind, LoadError> {
     not_in_shape(node, shape)?;
     if let Some(s) = node.children_of(ObjectTag::Shape).first() {
         return Err(LoadError::at(
@@ -509,4 +528,65 @@ fn batch(node: &PluginNode, film: &Film, shape: Option<u32>) -> Result<SensorKin
         child.check_all_used()?;
     }
     Ok(SensorKind::Batch(Batch { cameras }))
+}
+
+/// `distant` (core: sensor/distant.rs): a 1x1 film; `to_world` or `direction`, not both;
+/// `target` a point or a nested shape (built for its geometry only, not rendered).
+fn distant(
+    b: &Builder,
+    node: &PluginNode,
+    film: &Film,
+    shape: Option<u32>,
+) -> Result<SensorKind, LoadError> {
+    not_in_shape(node, shape)?;
+    if (film.width, film.height) != (1, 1) {
+        return Err(at(node)(format!(
+            "supports only a 1x1 film, got {}x{} (Mitsuba 3 refuses it too)",
+            film.width, film.height
+        )));
+    }
+    if film.filter.radius() > 0.5 + 1e-4 {
+        b.warn(LoadWarning::at(
+            &node.pos,
+            format!(
+                "{}: a reconstruction filter of radius {} is wider than the one pixel (use the default box)",
+                node.desc(),
+                film.filter.radius()
+            ),
+        ));
+    }
+    let p = &node.props;
+    let target = match (p.contains("target"), node.child("target")) {
+        (true, Some(c)) => {
+            return Err(LoadError::at(
+                c.pos(),
+                format!("{}: 'target' is given twice, as a property and an object", node.desc()),
+            ))
+        }
+        (true, None) => DistantTarget::Point(p.get_point("target")?.unwrap_or_default()),
+        (false, Some(c)) if c.node.tag == ObjectTag::Shape => {
+            DistantTarget::Shape(Box::new(shapes::build_geometry(b, &c.node)?))
+        }
+        (false, Some(c)) => {
+            return Err(LoadError::at(
+                c.pos(),
+                format!(
+                    "{}: 'target' must be a point or a shape, not {}",
+                    node.desc(),
+                    c.node.desc()
+                ),
+            ))
+        }
+        (false, None) => DistantTarget::BoundingSphere,
+    };
+    let sensor = match (p.get_transform("to_world")?, p.get_vector("direction")?) {
+        (Some(_), Some(_)) => {
+            return Err(at(node)(
+                "give either 'to_world' or 'direction', not both (Mitsuba 3 refuses both)".into(),
+            ))
+        }
+        (None, Some(d)) => Distant::along(d, target),
+        (t, None) => Distant::new(&t.unwrap_or_default(), target),
+    };
+    Ok(SensorKind::Distant(sensor.map_err(at(node))?))
 }

@@ -228,6 +228,20 @@ fn instance(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadError> {
     Ok(())
 }
 
+/// A shape's geometry alone, where it only marks out a region (a `distant` sensor's
+/// `target`): a BSDF, emitter or sensor in it is an unused object, hence an error.
+pub(crate) fn build_geometry(b: &Builder, node: &PluginNode) -> Result<Shape, LoadError> {
+    if matches!(node.plugin_type.as_str(), "shapegroup" | "instance") {
+        return Err(LoadError::at(&node.pos, format!("{} cannot be nested here", node.desc())));
+    }
+    let p = &node.props;
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let flip = p.get_bool("flip_normals")?.unwrap_or(shape::DEFAULT_FLIP_NORMALS);
+    let shape = lookup(SHAPES, node)?(&ShapeArgs { b, node, to_world, flip })?;
+    node.check_all_used()?;
+    Ok(shape)
+}
+
 /// Builds a shape node, placed by `instance_to_world` after its own `to_world` when it is a
 /// member of an instanced group, and adds it (with its BSDF and area light) to the scene.
 fn build_placed(
@@ -282,7 +296,7 @@ fn build_placed(
         None => b.implicit_bsdf(emitting),
     };
     for c in node.children_of(ObjectTag::Sensor) {
-        let sensor = super::sensors::build(&c.node, Some(shape_index))?;
+        let sensor = super::sensors::build(b, &c.node, Some(shape_index))?;
         b.desc.sensors.push(sensor);
     }
     node.check_all_used()?;

@@ -2,6 +2,7 @@
 //! owns its film description and its sampler, as in Mitsuba 3.
 
 mod batch;
+mod distant;
 mod fov;
 mod irradiancemeter;
 pub mod orthographic;
@@ -10,6 +11,7 @@ mod radiancemeter;
 mod thinlens;
 
 pub use batch::Batch;
+pub use distant::{Distant, DistantTarget};
 pub use fov::{FieldOfView, FovAxis};
 pub use irradiancemeter::IrradianceMeter;
 pub use orthographic::Orthographic;
@@ -20,7 +22,7 @@ pub use thinlens::ThinLens;
 use glam::{UVec2, Vec2};
 
 use crate::film::Film;
-use crate::geometry::Ray;
+use crate::geometry::{Aabb, Ray};
 use crate::sampling::{PixelSampler, Sampler};
 
 /// The sensor models. Closed enum: one variant per sensor plugin.
@@ -32,6 +34,7 @@ pub enum SensorKind {
     RadianceMeter(RadianceMeter),
     IrradianceMeter(IrradianceMeter),
     Batch(Batch),
+    Distant(Distant),
 }
 
 /// The radiometric quantity a sensor reports.
@@ -77,11 +80,20 @@ impl Sensor {
     pub fn start_ray(&self, film_uv: Vec2, sampler: &mut PixelSampler) -> Option<Ray> {
         match &self.kind {
             SensorKind::RadianceMeter(m) => Some(m.ray()),
+            SensorKind::Distant(m) => Some(m.ray(sampler.next_2d())),
             SensorKind::IrradianceMeter(_) => None,
             SensorKind::Perspective(_)
             | SensorKind::ThinLens(_)
             | SensorKind::Orthographic(_)
             | SensorKind::Batch(_) => self.camera_ray(film_uv, sampler),
+        }
+    }
+
+    /// Tells the sensor the extent of the scene it measures (Mitsuba's `set_scene`): a
+    /// `distant` sensor starts its rays outside `bounds`.
+    pub fn set_scene(&mut self, bounds: &Aabb) {
+        if let SensorKind::Distant(d) = &mut self.kind {
+            d.set_scene(bounds);
         }
     }
 
@@ -92,7 +104,8 @@ impl Sensor {
             | SensorKind::ThinLens(_)
             | SensorKind::Orthographic(_)
             | SensorKind::Batch(_)
-            | SensorKind::RadianceMeter(_) => Quantity::Radiance,
+            | SensorKind::RadianceMeter(_)
+            | SensorKind::Distant(_) => Quantity::Radiance,
             SensorKind::IrradianceMeter(_) => Quantity::Irradiance,
         }
     }
@@ -100,7 +113,10 @@ impl Sensor {
     /// True for sensors whose samples do not depend on the film position (meters): the film's
     /// reconstruction filter plays no part and every sample has weight 1.
     pub fn is_meter(&self) -> bool {
-        matches!(self.kind, SensorKind::RadianceMeter(_) | SensorKind::IrradianceMeter(_))
+        matches!(
+            self.kind,
+            SensorKind::RadianceMeter(_) | SensorKind::IrradianceMeter(_) | SensorKind::Distant(_)
+        )
     }
 }
 
@@ -114,7 +130,9 @@ impl SensorKind {
             SensorKind::ThinLens(c) => Some(c.sample_ray(film_uv, aperture)),
             SensorKind::Orthographic(c) => Some(c.sample_ray(film_uv)),
             SensorKind::Batch(b) => b.sample_ray(film_uv, aperture),
-            SensorKind::RadianceMeter(_) | SensorKind::IrradianceMeter(_) => None,
+            SensorKind::RadianceMeter(_)
+            | SensorKind::IrradianceMeter(_)
+            | SensorKind::Distant(_) => None,
         }
     }
 }

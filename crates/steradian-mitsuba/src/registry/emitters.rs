@@ -210,7 +210,7 @@ fn projector(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError
         steradian::texture::Texture::Bitmap(bm) => bm.resolution(),
         _ => (1, 1),
     };
-    let fov = super::sensors::field_of_view(node)?;
+    let fov = super::field_of_view::field_of_view(node)?;
     let x_fov = fov.x_fov(width as u32, height as u32).map_err(at_param(node))?;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let aspect = width as f32 / height as f32;

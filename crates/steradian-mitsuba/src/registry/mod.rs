@@ -10,6 +10,8 @@
 
 mod bsdfs;
 mod emitters;
+mod field_of_view;
+mod geometry;
 mod integrators;
 pub(crate) mod sensors;
 mod shapes;
@@ -277,7 +279,7 @@ mod tests {
         let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../README.md");
         let readme = std::fs::read_to_string(path).unwrap();
         let families = [
-            ("shapes", names(shapes::SHAPES)),
+            ("shapes", names(geometry::SHAPES)),
             ("BSDFs", names(bsdfs::BSDFS)),
             ("textures", names(textures::TEXTURES)),
             ("emitters", [names(emitters::EMITTERS), vec!["area"]].concat()),

@@ -9,11 +9,12 @@ use steradian::film::{
 use steradian::geometry::Transform;
 use steradian::sampling::{Sampler, SamplerKind};
 use steradian::sensor::{
-    Batch, Distant, DistantTarget, FieldOfView, FovAxis, IrradianceMeter, Orthographic,
-    Perspective, RadianceMeter, Sensor, SensorKind, ThinLens,
+    Batch, Distant, DistantTarget, IrradianceMeter, Orthographic, Perspective, RadianceMeter,
+    Sensor, SensorKind, ThinLens,
 };
 
-use super::{at, at_param, lookup, shapes, Builder, Plugins};
+use super::field_of_view::field_of_view;
+use super::{at, at_param, geometry, lookup, Builder, Plugins};
 use crate::error::{LoadError, LoadWarning};
 use crate::tree::{ObjectTag, PluginNode};
 
@@ -209,16 +210,6 @@ fn orthogonal(node: &PluginNode) -> Result<SamplerKind, LoadError> {
     Ok(SamplerKind::Sobol)
 }
 
-fn parse_focal_length(node: &PluginNode, s: &str) -> Result<f32, LoadError> {
-    let num = s.trim().strip_suffix("mm").unwrap_or(s.trim());
-    num.trim().parse::<f32>().ok().filter(|v| *v > 0.0 && v.is_finite()).ok_or_else(|| {
-        LoadError::at(
-            node.props.position("focal_length").unwrap_or(&node.pos),
-            format!("focal_length must look like '50mm', got '{s}'"),
-        )
-    })
-}
-
 /// Builds one sensor's kind from its node, given its film and, for a sensor declared inside
 /// a shape, that shape's index.
 type BuildSensor = fn(&Builder, &PluginNode, &Film, Option<u32>) -> Result<SensorKind, LoadError>;
@@ -355,47 +346,6 @@ fn projective(node: &PluginNode, film: &Film, fov_film: &Film) -> Result<Project
     let far_clip = p.get_float("far_clip")?.unwrap_or(Perspective::DEFAULT_FAR_CLIP);
     let focus_distance = p.get_float("focus_distance")?.unwrap_or(far_clip);
     Ok(Projective { to_world, x_fov, aspect, near_clip, far_clip, focus_distance })
-}
-
-/// `fov` (with `fov_axis`) or `focal_length` of a projective camera, or of the `projector`
-/// emitter that shares its parameters.
-pub(crate) fn field_of_view(node: &PluginNode) -> Result<FieldOfView, LoadError> {
-    let p = &node.props;
-    Ok(match (p.get_float("fov")?, p.get_string("focal_length")?) {
-        (Some(_), Some(_)) => {
-            return Err(LoadError::at(
-                &node.pos,
-                format!("{}: give only one of 'fov' and 'focal_length'", node.desc()),
-            ))
-        }
-        (Some(degrees), None) => {
-            let axis = match p.get_string("fov_axis")? {
-                Some(a) => FovAxis::parse(&a).ok_or_else(|| {
-                    LoadError::at(
-                        p.position("fov_axis").unwrap(),
-                        format!("fov_axis must be x, y, diagonal, smaller or larger, got '{a}'"),
-                    )
-                })?,
-                None => FovAxis::default(),
-            };
-            FieldOfView::Angle { degrees, axis }
-        }
-        (None, fl) => {
-            if p.contains("fov_axis") {
-                p.get_string("fov_axis")?;
-                return Err(LoadError::at(
-                    p.position("fov_axis").unwrap(),
-                    "fov_axis only applies together with 'fov'",
-                ));
-            }
-            FieldOfView::FocalLength {
-                mm: match fl {
-                    Some(s) => parse_focal_length(node, &s)?,
-                    None => FieldOfView::DEFAULT_FOCAL_LENGTH,
-                },
-            }
-        }
-    })
 }
 
 fn perspective(
@@ -565,7 +515,7 @@ fn distant(
         }
         (true, None) => DistantTarget::Point(p.get_point("target")?.unwrap_or_default()),
         (false, Some(c)) if c.node.tag == ObjectTag::Shape => {
-            DistantTarget::Shape(Box::new(shapes::build_geometry(b, &c.node)?))
+            DistantTarget::Shape(Box::new(geometry::build_geometry(b, &c.node)?))
         }
         (false, Some(c)) => {
             return Err(LoadError::at(

@@ -1,0 +1,192 @@
+//! Shape plugins' geometry: `obj`, `ply`, `serialized`, `rectangle`, `disk`, `cube`, `sphere`,
+//! `cylinder`, each built from its node with its `to_world` and `flip_normals`. What a shape
+//! carries besides (BSDF, area emitter, sensor) and how groups place it is `shapes`' business;
+//! the geometry sits apart so that a sensor (a `distant` sensor's `target`) can build a shape
+//! without importing the module that nests sensors in shapes.
+
+use std::path::PathBuf;
+
+use steradian::geometry::Transform;
+use steradian::shape::{
+    self, read_obj, read_ply, Cylinder, Disk, Mesh, MeshData, Rectangle, Shape, ShapeError, Sphere,
+    DEFAULT_FLIP_TEX_COORDS,
+};
+
+use super::{lookup, Builder, Plugins};
+use crate::error::LoadError;
+use crate::tree::PluginNode;
+
+/// What a shape builder reads: the scene being built (for file paths), the shape's node, and
+/// the `to_world` and `flip_normals` every shape has.
+pub(super) struct ShapeArgs<'a> {
+    pub(super) b: &'a Builder,
+    pub(super) node: &'a PluginNode,
+    pub(super) to_world: Transform,
+    pub(super) flip: bool,
+}
+
+/// Builds one shape from its node.
+pub(super) type BuildShape = fn(&ShapeArgs) -> Result<Shape, LoadError>;
+
+/// Every shape plugin, by Mitsuba `type`.
+pub(super) const SHAPES: &Plugins<BuildShape> = &[
+    ("obj", obj),
+    ("ply", ply),
+    ("serialized", serialized_shape),
+    ("rectangle", rectangle),
+    ("disk", disk),
+    ("cube", cube),
+    ("sphere", sphere),
+    ("cylinder", cylinder),
+    ("shapegroup", group_placeholder),
+    ("instance", group_placeholder),
+];
+
+/// `shapegroup` and `instance` are handled by [`build`] before the table is consulted; the
+/// table names them so that unknown-type errors and the README's list include them.
+fn group_placeholder(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Err(LoadError::at(&s.node.pos, format!("{} cannot be nested in another object", s.node.desc())))
+}
+
+/// A shape error at the node.
+fn shape_err(node: &PluginNode) -> impl Fn(ShapeError) -> LoadError + '_ {
+    move |e| LoadError::at(&node.pos, format!("{}: {e}", node.desc()))
+}
+
+/// An error reading a mesh file, placed at its `filename`.
+fn mesh_err(node: &PluginNode) -> impl Fn(ShapeError) -> LoadError + '_ {
+    move |e| {
+        LoadError::at(
+            node.props.position("filename").unwrap_or(&node.pos),
+            format!("{}: {e}", node.desc()),
+        )
+    }
+}
+
+/// The mesh file named by the required string property `filename`.
+fn mesh_file(s: &ShapeArgs) -> Result<PathBuf, LoadError> {
+    let node = s.node;
+    let file = node
+        .props
+        .get_string("filename")?
+        .ok_or_else(|| LoadError::at(&node.pos, format!("{}: missing 'filename'", node.desc())))?;
+    Ok(s.b.resolve_path(node, &file))
+}
+
+/// `face_normals` of `obj` and `ply`.
+fn face_normals(node: &PluginNode) -> Result<bool, LoadError> {
+    Ok(node.props.get_bool("face_normals")?.unwrap_or(Mesh::DEFAULT_FACE_NORMALS))
+}
+
+/// The mesh of a file's `data` (or the error reading it), errors placed at `filename`.
+fn mesh(
+    s: &ShapeArgs,
+    data: Result<MeshData, ShapeError>,
+    face_normals: bool,
+) -> Result<Shape, LoadError> {
+    let data = data.map_err(mesh_err(s.node))?;
+    let mesh =
+        Mesh::from_data(data, &s.to_world, s.flip, face_normals).map_err(mesh_err(s.node))?;
+    Ok(Shape::Mesh(mesh))
+}
+
+fn obj(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let path = mesh_file(s)?;
+    let face_normals = face_normals(s.node)?;
+    let flip_tex = s.node.props.get_bool("flip_tex_coords")?.unwrap_or(DEFAULT_FLIP_TEX_COORDS);
+    mesh(s, read_obj(&path, flip_tex), face_normals)
+}
+
+fn ply(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let path = mesh_file(s)?;
+    let face_normals = face_normals(s.node)?;
+    mesh(s, read_ply(&path), face_normals)
+}
+
+fn rectangle(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Rectangle(Rectangle::new(&s.to_world, s.flip)))
+}
+
+fn disk(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Disk(Disk::new(&s.to_world, s.flip)))
+}
+
+fn cube(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Mesh(shape::cube(&s.to_world, s.flip)))
+}
+
+fn sphere(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let (p, node) = (&s.node.props, s.node);
+    let center = p.get_point("center")?.unwrap_or(Sphere::DEFAULT_CENTER);
+    let radius = p.get_float("radius")?.unwrap_or(Sphere::DEFAULT_RADIUS);
+    if !(radius.is_finite() && radius != 0.0) {
+        return Err(LoadError::at(
+            p.position("radius").unwrap_or(&node.pos),
+            format!("{}: radius must be non-zero and finite, got {radius}", node.desc()),
+        ));
+    }
+    Ok(Shape::Sphere(Sphere::new(center, radius, &s.to_world, s.flip)))
+}
+
+fn cylinder(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let p = &s.node.props;
+    let p0 = p.get_point("p0")?.unwrap_or(Cylinder::DEFAULT_P0);
+    let p1 = p.get_point("p1")?.unwrap_or(Cylinder::DEFAULT_P1);
+    let radius = p.get_float("radius")?.unwrap_or(Cylinder::DEFAULT_RADIUS);
+    let cylinder = Cylinder::new(p0, p1, radius, &s.to_world, s.flip).map_err(shape_err(s.node))?;
+    Ok(Shape::Cylinder(cylinder))
+}
+
+/// A shape's geometry alone, where it only marks out a region (a `distant` sensor's
+/// `target`): a BSDF, emitter or sensor in it is an unused object, hence an error.
+pub(crate) fn build_geometry(b: &Builder, node: &PluginNode) -> Result<Shape, LoadError> {
+    if matches!(node.plugin_type.as_str(), "shapegroup" | "instance") {
+        return Err(LoadError::at(&node.pos, format!("{} cannot be nested here", node.desc())));
+    }
+    let p = &node.props;
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let flip = p.get_bool("flip_normals")?.unwrap_or(shape::DEFAULT_FLIP_NORMALS);
+    let shape = lookup(SHAPES, node)?(&ShapeArgs { b, node, to_world, flip })?;
+    node.check_all_used()?;
+    Ok(shape)
+}
+
+/// `serialized`: one shape of a Mitsuba `.serialized` file (core: shape/serialized.rs).
+fn serialized_shape(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    Ok(Shape::Mesh(serialized(s.b, s.node, &s.to_world, s.flip)?))
+}
+
+fn serialized(
+    b: &Builder,
+    node: &PluginNode,
+    to_world: &steradian::geometry::Transform,
+    flip_normals: bool,
+) -> Result<Mesh, LoadError> {
+    use steradian::shape::serialized::{
+        read_serialized, DEFAULT_FACE_NORMALS, DEFAULT_SHAPE_INDEX,
+    };
+    let p = &node.props;
+    let file = p
+        .get_string("filename")?
+        .ok_or_else(|| LoadError::at(&node.pos, format!("{}: missing 'filename'", node.desc())))?;
+    let path = b.resolve_path(node, &file);
+    let shape_index = match p.get_int("shape_index")? {
+        None => DEFAULT_SHAPE_INDEX,
+        Some(i) => u32::try_from(i).map_err(|_| {
+            LoadError::at(
+                p.position("shape_index").unwrap_or(&node.pos),
+                format!(
+                    "{}: shape_index must be a non-negative 32-bit integer, got {i}",
+                    node.desc()
+                ),
+            )
+        })?,
+    };
+    let face_normals = p.get_bool("face_normals")?.unwrap_or(DEFAULT_FACE_NORMALS);
+    // Errors reading the file are placed at its `filename`.
+    let file_err = |e: steradian::shape::ShapeError| {
+        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {e}", node.desc()))
+    };
+    let shape = read_serialized(&path, shape_index).map_err(file_err)?;
+    Mesh::from_data(shape.data, to_world, flip_normals, face_normals).map_err(file_err)
+}

@@ -101,10 +101,10 @@ fn unknown_emitter_type() {
 #[test]
 fn unknown_sensor_type() {
     check(
-        &err(&scene("<sensor type=\"distant\"/>")),
+        &err(&scene("<sensor type=\"distnat\"/>")),
         2,
         1,
-        &["the Mitsuba 3 sensor plugin 'distant' is not supported by steradian", "perspective"],
+        &["unknown sensor plugin type 'distnat'", "perspective", "distant"],
     );
 }
 

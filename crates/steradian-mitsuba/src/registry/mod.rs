@@ -112,7 +112,6 @@ pub(crate) type Plugins<F> = [(&'static str, F)];
 pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("bsdf", &["hair", "measured", "measured_polarized", "polarizer", "retarder"]),
     ("shape", &["bsplinecurve", "linearcurve", "sdfgrid", "ellipsoids", "ellipsoidsmesh", "merge"]),
-    ("sensor", &["distant"]),
     ("film", &["specfilm"]),
     ("texture", &["mesh_attribute", "volume"]),
     (

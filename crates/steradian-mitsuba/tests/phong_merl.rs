@@ -16,6 +16,7 @@ use steradian::render::{render, RenderOptions};
 use steradian::sampling::{Pcg32, SamplerKind};
 use steradian::testkit::bsdf::sp;
 use steradian::testkit::{temp_dir, write_file};
+use steradian::texture::TexturePoint;
 use steradian::{Spectrum, Vec2, Vec3};
 use steradian_mitsuba::{load_file, LoadError};
 
@@ -362,14 +363,22 @@ fn phong_defaults_and_parameters() {
     let p = load(r#"<bsdf type="phong"/>"#);
     let uv = Vec2::ZERO;
     assert_eq!(
-        (p.diffuse_reflectance.eval(uv), p.specular_reflectance.eval(uv), p.exponent),
+        (
+            p.diffuse_reflectance.eval(TexturePoint::at_uv(uv)),
+            p.specular_reflectance.eval(TexturePoint::at_uv(uv)),
+            p.exponent
+        ),
         (Spectrum::splat(0.5), Spectrum::splat(0.2), 30.0)
     );
     let p = load(
         r#"<bsdf type="phong"><rgb name="diffuse_reflectance" value="0.1, 0.2, 0.3"/><float name="specular_reflectance" value="0.7"/><float name="exponent" value="0"/></bsdf>"#,
     );
     assert_eq!(
-        (p.diffuse_reflectance.eval(uv), p.specular_reflectance.eval(uv), p.exponent),
+        (
+            p.diffuse_reflectance.eval(TexturePoint::at_uv(uv)),
+            p.specular_reflectance.eval(TexturePoint::at_uv(uv)),
+            p.exponent
+        ),
         (Spectrum::new(0.1, 0.2, 0.3), Spectrum::splat(0.7), 0.0)
     );
 }

@@ -10,7 +10,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use steradian::bsdf::Bsdf;
 use steradian::emitter::Emitter;
 use steradian::testkit::{temp_dir, write_file};
-use steradian::texture::{FilterType, Texture, WrapMode};
+use steradian::texture::{FilterType, Texture, TexturePoint, WrapMode};
 use steradian::{Spectrum, Vec2};
 use steradian_mitsuba::{load_file, LoadError};
 
@@ -75,7 +75,7 @@ fn bitmap_parameters_and_values() {
         r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="wall.png"/></texture></bsdf>"#,
     );
     let Bsdf::Diffuse(d) = b else { panic!() };
-    let v = d.reflectance.eval(Vec2::new(0.3, 0.7));
+    let v = d.reflectance.eval(TexturePoint::at_uv(Vec2::new(0.3, 0.7)));
     let mitsuba = Spectrum::new(MITSUBA_WALL[0], MITSUBA_WALL[1], MITSUBA_WALL[2]);
     assert!((v - mitsuba).abs().max_element() < 1e-3, "{v} vs {mitsuba}");
     // JPEG: decoders may differ by one code value (≈ 0.4 % after sRGB decoding)
@@ -83,7 +83,7 @@ fn bitmap_parameters_and_values() {
         r#"<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/><string name="filter_type" value="nearest"/></texture></bsdf>"#,
     );
     let Bsdf::Diffuse(d) = b else { panic!() };
-    let v = d.reflectance.eval(Vec2::new(0.5, 0.5));
+    let v = d.reflectance.eval(TexturePoint::at_uv(Vec2::new(0.5, 0.5)));
     let mitsuba = Spectrum::new(MITSUBA_LEAF[0], MITSUBA_LEAF[1], MITSUBA_LEAF[2]);
     assert!((v - mitsuba).abs().max_element() < 0.01 * mitsuba.max_element(), "{v} vs {mitsuba}");
 }
@@ -145,7 +145,10 @@ fn textures_wherever_mitsuba_takes_them() {
     .unwrap();
     let Emitter::Area(a) = &scene.scene.emitters[0] else { panic!() };
     // light.exr texel (0, 0) = (16, 15, 13)
-    assert_eq!(a.radiance.eval(Vec2::new(0.1, 0.1)), Spectrum::new(16.0, 15.0, 13.0));
+    assert_eq!(
+        a.radiance.eval(TexturePoint::at_uv(Vec2::new(0.1, 0.1))),
+        Spectrum::new(16.0, 15.0, 13.0)
+    );
 }
 
 #[test]
@@ -160,7 +163,10 @@ fn adapters_load_with_mitsuba_defaults() {
         panic!()
     };
     assert_eq!(
-        (m.opacity.eval_1(Vec2::new(0.5, 0.5)), m.opacity.eval_1(Vec2::new(0.01, 0.5))),
+        (
+            m.opacity.eval_1(TexturePoint::at_uv(Vec2::new(0.5, 0.5))),
+            m.opacity.eval_1(TexturePoint::at_uv(Vec2::new(0.01, 0.5)))
+        ),
         (1.0, 0.0)
     );
     let Bsdf::BlendBsdf(b) = bsdf_of(
@@ -169,7 +175,7 @@ fn adapters_load_with_mitsuba_defaults() {
         panic!()
     };
     assert!(matches!((&*b.bsdf0, &*b.bsdf1), (Bsdf::Diffuse(_), Bsdf::Conductor(_))));
-    assert_eq!(b.weight.eval_1(Vec2::ZERO), 0.3);
+    assert_eq!(b.weight.eval_1(TexturePoint::at_uv(Vec2::ZERO)), 0.3);
     let Bsdf::BumpMap(b) = bsdf_of(
         r#"<bsdf type="bumpmap"><texture type="bitmap"><string name="filename" value="bumps.png"/><boolean name="raw" value="true"/></texture><bsdf type="roughplastic"/></bsdf>"#,
     ) else {

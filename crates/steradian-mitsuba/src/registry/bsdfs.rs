@@ -17,7 +17,7 @@ use steradian::bsdf::{Merl, MerlTable, Phong};
 use steradian::texture::Texture;
 use steradian::Spectrum;
 
-use super::textures::{self, albedo_param, texture_param};
+use super::textures::{self, albedo_param, scalar_param, texture_param};
 use super::{at, at_param, check_non_negative, lookup, Builder, Plugins};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
@@ -140,7 +140,7 @@ fn microfacet(
     };
     let alpha = |n: &str| -> Result<Texture, LoadError> {
         if textures {
-            texture_param(b, node, n, Some(MicrofacetDistribution::DEFAULT_ALPHA))
+            scalar_param(b, node, n, Some(MicrofacetDistribution::DEFAULT_ALPHA))
         } else {
             let alpha = p.get_float(n)?.unwrap_or(MicrofacetDistribution::DEFAULT_ALPHA);
             Ok(Texture::Constant(Spectrum::splat(alpha)))
@@ -243,7 +243,7 @@ fn weight_param(
     name: &str,
     default: f32,
 ) -> Result<Texture, LoadError> {
-    let t = texture_param(b, node, name, Some(default))?;
+    let t = scalar_param(b, node, name, Some(default))?;
     if let Texture::Constant(v) = &t {
         check_non_negative(node, name, *v)?;
     }
@@ -509,11 +509,13 @@ fn merl(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
 
 fn mask(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let opacity = albedo_param(b, node, "opacity", Some(Mask::DEFAULT_OPACITY))?;
+    textures::check_scalar(node, "opacity", &opacity)?;
     Ok(Bsdf::Mask(Mask::new(opacity, one_nested(b, node)?)))
 }
 
 fn blendbsdf(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let weight = albedo_param(b, node, "weight", None)?;
+    textures::check_scalar(node, "weight", &weight)?;
     match <[Bsdf; 2]>::try_from(nested_bsdfs(b, node)?) {
         Ok([b0, b1]) => Ok(Bsdf::BlendBsdf(BlendBsdf::new(weight, b0, b1))),
         Err(v) => Err(at(node)(format!("expects two nested BSDFs, got {}", v.len()))),

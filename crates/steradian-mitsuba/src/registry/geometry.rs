@@ -8,11 +8,11 @@ use std::path::PathBuf;
 
 use steradian::geometry::Transform;
 use steradian::shape::{
-    self, read_obj, read_ply, Cylinder, Disk, Mesh, MeshData, Rectangle, Shape, ShapeError, Sphere,
-    DEFAULT_FLIP_TEX_COORDS,
+    self, read_obj, read_ply_with_attributes, Cylinder, Disk, Mesh, MeshData, Rectangle, Shape,
+    ShapeError, Sphere, DEFAULT_FLIP_TEX_COORDS,
 };
 
-use super::{lookup, Builder, Plugins};
+use super::{lookup, AttributeSource, Builder, MeshAttributes, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
@@ -97,10 +97,16 @@ fn obj(s: &ShapeArgs) -> Result<Shape, LoadError> {
     mesh(s, read_obj(&path, flip_tex), face_normals)
 }
 
+/// A `ply` mesh; its attributes are kept in the builder for the shape's BSDF
+/// (`mesh_attribute` textures).
 fn ply(s: &ShapeArgs) -> Result<Shape, LoadError> {
     let path = mesh_file(s)?;
     let face_normals = face_normals(s.node)?;
-    mesh(s, read_ply(&path), face_normals)
+    let (data, list) = read_ply_with_attributes(&path).map_err(mesh_err(s.node))?;
+    let attributes = MeshAttributes { indices: data.indices.as_slice().into(), list };
+    let shape = mesh(s, Ok(data), face_normals)?;
+    s.b.mesh_attributes.replace(AttributeSource::Mesh(attributes));
+    Ok(shape)
 }
 
 fn rectangle(s: &ShapeArgs) -> Result<Shape, LoadError> {

@@ -17,7 +17,7 @@ pub(crate) mod sensors;
 mod shapes;
 mod textures;
 
-use std::cell::RefCell;
+use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -26,6 +26,7 @@ use steradian::bsdf::Bsdf;
 use steradian::param::ParamError;
 use steradian::render::Job;
 use steradian::scene::{Scene, SceneDescription};
+use steradian::texture::MeshAttributeData;
 
 use crate::error::{LoadError, LoadWarning};
 use crate::file_resolver::FileResolver;
@@ -44,6 +45,27 @@ pub(crate) struct Builder {
     resolver: FileResolver,
     /// What the builders warned about so far (they see the builder by shared reference).
     warnings: RefCell<Vec<LoadWarning>>,
+    /// What a `mesh_attribute` texture built now can read.
+    pub(crate) mesh_attributes: RefCell<AttributeSource>,
+    /// Set when a `mesh_attribute` texture was built: the BSDF being built belongs to its
+    /// shape and is not shared through the cache.
+    pub(crate) read_mesh_attribute: Cell<bool>,
+}
+
+/// What a `mesh_attribute` texture can read where it is built.
+pub(crate) enum AttributeSource {
+    /// Nothing: the texture is not in a shape's BSDF (an emitter's, a sensor's).
+    None,
+    /// A scene-level BSDF or texture, checked now and built again where a shape uses it.
+    Deferred,
+    /// The BSDF of a mesh with these attributes.
+    Mesh(MeshAttributes),
+}
+
+/// A mesh's attributes as its file gave them, with its triangles.
+pub(crate) struct MeshAttributes {
+    pub(crate) indices: Arc<[[u32; 3]]>,
+    pub(crate) list: Vec<MeshAttributeData>,
 }
 
 impl Builder {
@@ -75,9 +97,13 @@ impl Builder {
         if let Some(&i) = self.bsdf_cache.get(&key) {
             return Ok(i);
         }
+        let shared = self.read_mesh_attribute.replace(false);
         let bsdf = bsdfs::build(self, node)?;
         let i = self.add_bsdf(bsdf);
-        self.bsdf_cache.insert(key, i);
+        // a BSDF reading its mesh's attributes is built again for every shape
+        if !self.read_mesh_attribute.replace(shared) {
+            self.bsdf_cache.insert(key, i);
+        }
         Ok(i)
     }
 
@@ -113,7 +139,7 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("bsdf", &["hair", "measured", "measured_polarized", "polarizer", "retarder"]),
     ("shape", &["bsplinecurve", "linearcurve", "sdfgrid", "ellipsoids", "ellipsoidsmesh", "merge"]),
     ("film", &["specfilm"]),
-    ("texture", &["mesh_attribute", "volume"]),
+    ("texture", &["volume"]),
     (
         "integrator",
         &[
@@ -203,6 +229,8 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
         base_dir: base_dir.to_path_buf(),
         resolver: tree.resolver.clone(),
         warnings: RefCell::new(tree.warnings.clone()),
+        mesh_attributes: RefCell::new(AttributeSource::None),
+        read_mesh_attribute: Cell::new(false),
     };
     let mut integrator_pos = None;
     let mut integrator = None;
@@ -213,7 +241,10 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
         match node.tag {
             ObjectTag::Shape => shapes::build(&mut b, node)?,
             ObjectTag::Bsdf => {
-                b.bsdf_index(node)?;
+                b.mesh_attributes.replace(AttributeSource::Deferred);
+                let built = b.bsdf_index(node);
+                b.mesh_attributes.replace(AttributeSource::None);
+                built?;
             }
             ObjectTag::Emitter => {
                 let e = emitters::build_standalone(&b, node)?;
@@ -233,7 +264,10 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
             }
             ObjectTag::Texture => {
                 // built where it is referenced; built here too so that its errors show
-                textures::build(&b, node)?;
+                b.mesh_attributes.replace(AttributeSource::Deferred);
+                let built = textures::build(&b, node);
+                b.mesh_attributes.replace(AttributeSource::None);
+                built?;
             }
             ObjectTag::Integrator => {
                 if let Some(first) = integrator_pos.replace(node.pos.clone()) {

@@ -17,7 +17,7 @@ use steradian::scene::ShapeBinding;
 use steradian::shape;
 
 use super::geometry::{ShapeArgs, SHAPES};
-use super::{emitters, lookup, Builder};
+use super::{emitters, lookup, AttributeSource, Builder, MeshAttributes};
 use crate::error::LoadError;
 use crate::tree::{ObjectTag, PluginNode};
 
@@ -119,7 +119,16 @@ fn build_placed(
     };
     let flip_normals = p.get_bool("flip_normals")?.unwrap_or(shape::DEFAULT_FLIP_NORMALS);
     let build_shape = lookup(SHAPES, node)?;
+    b.mesh_attributes.replace(AttributeSource::None);
     let shape = build_shape(&ShapeArgs { b, node, to_world, flip: flip_normals })?;
+    // the mesh's attributes serve its BSDF only (Mitsuba's emitters cannot read them)
+    let attributes = match b.mesh_attributes.replace(AttributeSource::None) {
+        // shapes other than `ply` have no attributes
+        AttributeSource::None => {
+            AttributeSource::Mesh(MeshAttributes { indices: Arc::from([]), list: Vec::new() })
+        }
+        source => source,
+    };
     if !shape.surface_area().is_finite() {
         return Err(LoadError::at(
             &node.pos,
@@ -153,10 +162,13 @@ fn build_placed(
         },
         None => (None, false),
     };
+    b.mesh_attributes.replace(attributes);
     let bsdf = match bsdfs.first() {
-        Some(c) => b.bsdf_index(&c.node)?,
-        None => b.implicit_bsdf(emitting),
+        Some(c) => b.bsdf_index(&c.node),
+        None => Ok(b.implicit_bsdf(emitting)),
     };
+    b.mesh_attributes.replace(AttributeSource::None);
+    let bsdf = bsdf?;
     for c in node.children_of(ObjectTag::Sensor) {
         let sensor = super::sensors::build(b, &c.node, Some(shape_index))?;
         b.desc.sensors.push(sensor);

@@ -1,13 +1,13 @@
-//! Texture plugins: `bitmap` and `checkerboard` (see `steradian::texture` for their
+//! Texture plugins: `bitmap`, `checkerboard`, `mesh_attribute` and `rawconstant` (see `steradian::texture` for their
 //! parameters), and [`texture_param`], which reads a parameter that Mitsuba accepts as a
 //! value or as a nested `<texture>`.
 
 use steradian::texture::{
-    read_image, Bitmap, Checkerboard, FilterType, Texture, UvTransform, WrapMode,
+    read_image, Bitmap, Checkerboard, FilterType, MeshAttribute, Texture, UvTransform, WrapMode,
 };
 use steradian::Spectrum;
 
-use super::{at, check_non_negative, lookup, Builder, Plugins};
+use super::{at, check_non_negative, lookup, AttributeSource, Builder, Plugins};
 use crate::error::{LoadError, LoadWarning};
 use crate::properties::PropertyValue;
 use crate::tree::{ObjectTag, PluginNode};
@@ -42,6 +42,36 @@ pub(crate) fn texture_param(
             format!("{}: missing parameter '{name}' (a value or a <texture>)", node.desc()),
         )),
     }
+}
+
+/// A parameter read as one number at each point (Mitsuba's `eval_1`: a roughness, a weight,
+/// an opacity): a [`texture_param`] that must have a scalar reading, as Mitsuba requires (a
+/// 3-channel `mesh_attribute` has none).
+pub(crate) fn scalar_param(
+    b: &Builder,
+    node: &PluginNode,
+    name: &str,
+    default: Option<f32>,
+) -> Result<Texture, LoadError> {
+    let t = texture_param(b, node, name, default)?;
+    check_scalar(node, name, &t)?;
+    Ok(t)
+}
+
+/// Refuses texture `t` of parameter `name` when it has no scalar reading ([`scalar_param`]).
+pub(crate) fn check_scalar(node: &PluginNode, name: &str, t: &Texture) -> Result<(), LoadError> {
+    if let Some(attribute) = t.scalar_reading_refused() {
+        let pos = node.child(name).map(|c| c.pos()).unwrap_or(&node.pos);
+        return Err(LoadError::at(
+            pos,
+            format!(
+                "{}: '{name}' is a single number, but mesh attribute \"{attribute}\" has 3 \
+                 channels (Mitsuba refuses it too; use a 1-channel attribute)",
+                node.desc()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// An albedo-like parameter (a reflectance or transmittance, a fraction of the light): a
@@ -107,8 +137,12 @@ fn choice<T: Copy>(
 type BuildTexture = fn(&Builder, &PluginNode) -> Result<Texture, LoadError>;
 
 /// Every texture plugin, by Mitsuba `type`.
-pub(super) const TEXTURES: &Plugins<BuildTexture> =
-    &[("bitmap", bitmap), ("checkerboard", checkerboard), ("rawconstant", rawconstant)];
+pub(super) const TEXTURES: &Plugins<BuildTexture> = &[
+    ("bitmap", bitmap),
+    ("checkerboard", checkerboard),
+    ("mesh_attribute", mesh_attribute),
+    ("rawconstant", rawconstant),
+];
 
 /// Builds a `<texture>` node.
 pub(crate) fn build(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
@@ -176,6 +210,60 @@ fn bitmap(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
     };
     let image = read_image(&path).map_err(at_file)?;
     Ok(Texture::Bitmap(Bitmap::new(&filename, image, raw, filter, wrap, to_uv).map_err(at_file)?))
+}
+
+/// `mesh_attribute` (see `steradian::texture::MeshAttribute`): an attribute of the PLY mesh
+/// whose BSDF holds the texture, found by `name` among the file's attributes.
+fn mesh_attribute(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
+    let p = &node.props;
+    let Some(name) = p.get_string("name")? else {
+        return Err(at(node)("missing parameter 'name' (e.g. \"vertex_color\")".into()));
+    };
+    let at_name = |msg: String| {
+        LoadError::at(p.position("name").unwrap_or(&node.pos), format!("{}: {msg}", node.desc()))
+    };
+    // Mitsuba's test: the name contains one of the prefixes
+    if !name.contains("vertex_") && !name.contains("face_") {
+        return Err(at_name(format!(
+            "invalid attribute name \"{name}\": it must start with \"vertex_\" or \"face_\""
+        )));
+    }
+    let scale = p.get_float("scale")?.unwrap_or(MeshAttribute::DEFAULT_SCALE);
+    if !scale.is_finite() {
+        return Err(LoadError::at(
+            p.position("scale").unwrap_or(&node.pos),
+            format!("{}: 'scale' must be finite, got {scale}", node.desc()),
+        ));
+    }
+    let source = b.mesh_attributes.borrow();
+    let attributes = match &*source {
+        AttributeSource::Mesh(a) => a,
+        AttributeSource::Deferred => {
+            // a scene-level BSDF or texture: rebuilt, with its mesh, by each shape using it
+            b.read_mesh_attribute.set(true);
+            return Ok(Texture::Constant(Spectrum::splat(0.0)));
+        }
+        AttributeSource::None => {
+            return Err(at(node)(format!(
+                "attribute \"{name}\": no mesh attributes here; a mesh_attribute texture reads \
+                 the attributes of the mesh whose BSDF holds it (not an emitter's or a sensor's)"
+            )));
+        }
+    };
+    if attributes.list.is_empty() {
+        return Err(at_name(format!("the mesh has no attributes, so none named \"{name}\"")));
+    }
+    let Some(data) = attributes.list.iter().find(|a| a.name == name) else {
+        let names: Vec<String> =
+            attributes.list.iter().map(|a| format!("\"{}\"", a.name)).collect();
+        return Err(at_name(format!(
+            "the mesh has no attribute \"{name}\"; it has {}",
+            names.join(", ")
+        )));
+    };
+    let texture = MeshAttribute::new(data, attributes.indices.clone(), scale).map_err(at_name)?;
+    b.read_mesh_attribute.set(true);
+    Ok(Texture::MeshAttribute(texture))
 }
 
 fn checkerboard(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {

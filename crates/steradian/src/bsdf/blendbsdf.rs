@@ -32,7 +32,7 @@ impl BlendBsdf {
     /// The blend weight at the shading point, clamped to [0, 1].
     #[inline]
     fn w(&self, sp: &ShadingPoint) -> f32 {
-        let w = self.weight.eval_1(sp.uv);
+        let w = self.weight.eval_1(sp.tex());
         if w.is_nan() {
             0.0
         } else {

@@ -44,7 +44,7 @@ impl BumpMap {
     ) -> Result<Self, String> {
         if !height.has_gradient() {
             return Err(
-                "the height texture of a bumpmap must be a bitmap (a checkerboard has no gradient)"
+                "the height texture of a bumpmap must be a bitmap (a checkerboard or mesh_attribute has no gradient)"
                     .into(),
             );
         }
@@ -53,7 +53,7 @@ impl BumpMap {
 
     /// The bumped normal n' in the local shading frame (unnormalised).
     pub fn normal(&self, sp: &ShadingPoint) -> Vec3 {
-        let g = self.height.eval_1_grad(sp.uv).unwrap_or(Vec2::ZERO) * self.scale;
+        let g = self.height.eval_1_grad(sp.tex()).unwrap_or(Vec2::ZERO) * self.scale;
         let dpdu = Vec3::new(sp.dpdu.x, sp.dpdu.y, g.x);
         let dpdv = Vec3::new(sp.dpdv.x, sp.dpdv.y, g.y);
         let n = dpdu.cross(dpdv);
@@ -285,7 +285,8 @@ mod alpha_texture_tests {
     #[test]
     fn roughness_is_read_at_the_shading_point() {
         // a roughness between 0.05 and 0.55 that varies over the surface
-        let alpha = |uv: Vec2| 0.05 + 5.0 * heights().eval_1(uv);
+        let alpha =
+            |uv: Vec2| 0.05 + 5.0 * heights().eval_1(crate::texture::TexturePoint::at_uv(uv));
         for uv in [Vec2::new(0.3, 0.6), Vec2::new(0.8, 0.1)] {
             let sp = ShadingPoint::at_uv(uv);
             let a = alpha(uv);
@@ -341,7 +342,7 @@ mod alpha_texture_tests {
             )
             .with_alpha_textures(heights(), heights()),
         );
-        let a = heights().eval_1(sp().uv);
+        let a = heights().eval_1(sp().tex());
         assert!(a > 0.02, "{a}");
         check_sample_consistency(&b, dir(40.0, 0.0), 3);
         let p = chi2_pvalue_sub(&b, dir(40.0, 0.0), 200_000, 77, 32);

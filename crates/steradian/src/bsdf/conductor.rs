@@ -62,7 +62,7 @@ impl Conductor {
         if ct <= 0.0 {
             return None;
         }
-        let weight = self.specular_reflectance.eval(sp.uv) * self.ior.fresnel(ct);
+        let weight = self.specular_reflectance.eval(sp.tex()) * self.ior.fresnel(ct);
         Some(BsdfSample { wi: reflect(wo), pdf: 1.0, weight, lobe: Lobe::Delta, eta: 1.0 })
     }
 }

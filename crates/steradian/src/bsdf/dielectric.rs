@@ -60,11 +60,11 @@ impl Dielectric {
     pub fn sample(&self, sp: &ShadingPoint, wo: Vec3, u1: f32, _u2: Vec2) -> Option<BsdfSample> {
         let f = fresnel_dielectric(wo.z, self.eta);
         if u1 <= f.r {
-            let weight = self.specular_reflectance.eval(sp.uv);
+            let weight = self.specular_reflectance.eval(sp.tex());
             Some(BsdfSample { wi: reflect(wo), pdf: 1.0, weight, lobe: Lobe::Delta, eta: 1.0 })
         } else {
             let wi = refract(wo, f.cos_theta_t, f.eta_ti);
-            let weight = self.specular_transmittance.eval(sp.uv) * (f.eta_ti * f.eta_ti);
+            let weight = self.specular_transmittance.eval(sp.tex()) * (f.eta_ti * f.eta_ti);
             Some(BsdfSample { wi, pdf: 1.0, weight, lobe: Lobe::Delta, eta: f.eta_it })
         }
     }

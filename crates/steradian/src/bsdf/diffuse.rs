@@ -36,7 +36,7 @@ impl Diffuse {
         if cos_theta(wo) <= 0.0 || cos_theta(wi) <= 0.0 {
             return Spectrum::ZERO;
         }
-        self.reflectance.eval(sp.uv) * FRAC_1_PI
+        self.reflectance.eval(sp.tex()) * FRAC_1_PI
     }
 
     #[inline]
@@ -60,7 +60,7 @@ impl Diffuse {
         Some(BsdfSample {
             wi,
             pdf,
-            weight: self.reflectance.eval(sp.uv),
+            weight: self.reflectance.eval(sp.tex()),
             lobe: Lobe::Smooth,
             eta: 1.0,
         })

@@ -41,7 +41,7 @@ impl Mask {
     /// The opacity at the shading point, clamped to [0, 1] as Mitsuba does.
     #[inline]
     fn opacity(&self, sp: &ShadingPoint) -> f32 {
-        let a = self.opacity.eval_1(sp.uv);
+        let a = self.opacity.eval_1(sp.tex());
         if a.is_nan() {
             0.0
         } else {

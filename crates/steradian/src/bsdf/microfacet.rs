@@ -19,7 +19,7 @@ use std::f32::consts::PI;
 use glam::{Vec2, Vec3};
 
 use crate::sampling::warp;
-use crate::texture::Texture;
+use crate::texture::{Texture, TexturePoint};
 
 /// The shape of the microfacet slope distribution (`distribution`; the default is Mitsuba's).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -48,13 +48,13 @@ impl MicrofacetDistribution {
     /// This distribution with α_u, α_v read at `uv` from `alpha` (textures' `eval_1`) where
     /// a BSDF has spatially varying roughness; unchanged where it has none.
     #[inline]
-    pub fn with_alpha_at(&self, alpha: Option<&(Texture, Texture)>, uv: Vec2) -> Self {
+    pub fn with_alpha_at(&self, alpha: Option<&(Texture, Texture)>, p: TexturePoint) -> Self {
         match alpha {
             None => *self,
             Some((u, v)) => MicrofacetDistribution::new(
                 self.kind,
-                u.eval_1(uv),
-                v.eval_1(uv),
+                u.eval_1(p),
+                v.eval_1(p),
                 self.sample_visible,
             ),
         }

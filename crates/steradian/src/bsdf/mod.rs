@@ -53,6 +53,7 @@ pub use twosided::TwoSided;
 
 use glam::{Vec2, Vec3};
 
+use crate::texture::TexturePoint;
 use crate::Spectrum;
 
 /// What kind of scattering a sampled direction came from.
@@ -93,12 +94,28 @@ pub struct ShadingPoint {
     pub dpdv: Vec3,
     /// The geometric normal in the local shading frame (unit).
     pub ng: Vec3,
+    /// The primitive and barycentrics, for mesh-attribute textures ([`TexturePoint`]).
+    pub prim: u32,
+    pub bary: Vec2,
 }
 
 impl ShadingPoint {
     /// A point at `uv` of a flat surface whose shading frame is its (u, v, n) frame.
     pub fn at_uv(uv: Vec2) -> Self {
-        ShadingPoint { uv, dpdu: Vec3::X, dpdv: Vec3::Y, ng: Vec3::Z }
+        ShadingPoint {
+            uv,
+            dpdu: Vec3::X,
+            dpdv: Vec3::Y,
+            ng: Vec3::Z,
+            prim: u32::MAX,
+            bary: Vec2::ZERO,
+        }
+    }
+
+    /// Where the BSDF's textures are evaluated.
+    #[inline]
+    pub fn tex(&self) -> TexturePoint {
+        TexturePoint { uv: self.uv, prim: self.prim, bary: self.bary }
     }
 
     /// The shading point of a surface interaction (its vectors taken to the shading frame).
@@ -109,6 +126,8 @@ impl ShadingPoint {
             dpdu: si.to_local(si.dpdu),
             dpdv: si.to_local(si.dpdv),
             ng: si.to_local(si.n),
+            prim: si.prim,
+            bary: si.bary,
         }
     }
 }
@@ -220,11 +239,11 @@ impl Bsdf {
     /// normal map's nested BSDF's), else π·ρ(wo, n) (0 for delta BSDFs), Mitsuba's default.
     pub fn diffuse_reflectance(&self, sp: &ShadingPoint, wo: Vec3) -> Spectrum {
         match self {
-            Bsdf::Diffuse(b) => b.reflectance.eval(sp.uv),
-            Bsdf::Plastic(b) => b.diffuse_reflectance.eval(sp.uv),
-            Bsdf::RoughPlastic(b) => b.diffuse_reflectance.eval(sp.uv),
-            Bsdf::Principled(b) => b.base_color.eval(sp.uv),
-            Bsdf::PrincipledThin(b) => b.base_color.eval(sp.uv),
+            Bsdf::Diffuse(b) => b.reflectance.eval(sp.tex()),
+            Bsdf::Plastic(b) => b.diffuse_reflectance.eval(sp.tex()),
+            Bsdf::RoughPlastic(b) => b.diffuse_reflectance.eval(sp.tex()),
+            Bsdf::Principled(b) => b.base_color.eval(sp.tex()),
+            Bsdf::PrincipledThin(b) => b.base_color.eval(sp.tex()),
             Bsdf::BumpMap(b) => b.nested.diffuse_reflectance(sp, wo),
             Bsdf::NormalMap(b) => b.nested.diffuse_reflectance(sp, wo),
             _ => self.eval(sp, wo, Vec3::Z) * std::f32::consts::PI,

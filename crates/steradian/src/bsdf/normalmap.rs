@@ -32,7 +32,7 @@ impl NormalMap {
 
     /// The mapped normal 2c − 1 in the local shading frame (unnormalised).
     pub fn normal(&self, sp: &ShadingPoint) -> Vec3 {
-        Vec3::from(self.normals.eval(sp.uv)) * 2.0 - Vec3::ONE
+        Vec3::from(self.normals.eval(sp.tex())) * 2.0 - Vec3::ONE
     }
 
     #[inline]

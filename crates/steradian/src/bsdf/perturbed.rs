@@ -85,6 +85,8 @@ impl Perturbed {
             dpdu: frame.to_local(sp.dpdu),
             dpdv: frame.to_local(sp.dpdv),
             ng: frame.to_local(sp.ng),
+            prim: sp.prim,
+            bary: sp.bary,
         };
         Perturbed { frame, sp: nested, shadowing: options.use_shadowing_function }
     }

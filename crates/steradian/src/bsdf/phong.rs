@@ -136,8 +136,8 @@ impl Phong {
         if cos_theta(wo) <= 0.0 || cos_theta(wi) <= 0.0 {
             return Spectrum::ZERO;
         }
-        self.diffuse_reflectance.eval(sp.uv) * std::f32::consts::FRAC_1_PI
-            + self.specular_reflectance.eval(sp.uv) * (self.normalization * self.lobe(wo, wi))
+        self.diffuse_reflectance.eval(sp.tex()) * std::f32::consts::FRAC_1_PI
+            + self.specular_reflectance.eval(sp.tex()) * (self.normalization * self.lobe(wo, wi))
     }
 
     #[inline]

@@ -118,7 +118,8 @@ impl Plastic {
     /// ρ of the diffuse term divided by (1 − F(cos θi)), i.e. without the exit transmittance.
     #[inline]
     fn diffuse(&self, sp: &ShadingPoint, f_o: f32) -> Spectrum {
-        let a = self.internal.effective_albedo(self.diffuse_reflectance.eval(sp.uv), self.fdr_int);
+        let a =
+            self.internal.effective_albedo(self.diffuse_reflectance.eval(sp.tex()), self.fdr_int);
         a * (self.inv_eta_2 * (1.0 - f_o))
     }
 
@@ -150,7 +151,7 @@ impl Plastic {
         let f_o = fresnel_dielectric(cos_theta(wo), self.eta).r;
         let p_specular = specular_probability(self.specular_weight, 1.0 - f_o);
         if u1 < p_specular {
-            let weight = self.specular_reflectance.eval(sp.uv) * (f_o / p_specular);
+            let weight = self.specular_reflectance.eval(sp.tex()) * (f_o / p_specular);
             return Some(BsdfSample {
                 wi: reflect(wo),
                 pdf: p_specular,

@@ -74,12 +74,12 @@ impl PPlastic {
         let h = (wo + wi).normalize();
         let distr = &self.distribution;
         let f = fresnel_dielectric(wo.dot(h), self.eta).r;
-        let specular = self.specular_reflectance.eval(sp.uv)
+        let specular = self.specular_reflectance.eval(sp.tex())
             * (f * distr.d(h) * distr.g(wo, wi, h) / (4.0 * cos_o * cos_i));
         let t_o = 1.0 - fresnel_dielectric(cos_o, self.eta).r;
         let t_i = 1.0 - fresnel_dielectric(cos_i, self.eta).r;
         let diffuse =
-            self.diffuse_reflectance.eval(sp.uv) * (t_o * t_i * std::f32::consts::FRAC_1_PI);
+            self.diffuse_reflectance.eval(sp.tex()) * (t_o * t_i * std::f32::consts::FRAC_1_PI);
         specular + diffuse
     }
 

@@ -45,7 +45,7 @@ use super::disney::{self, faces_agree, schlick_fresnel, schlick_r0, Gtr1};
 use super::fresnel::{fresnel_dielectric, reflect_about, refract_about};
 use super::{positive, BsdfSample, Lobe, ShadingPoint};
 use crate::sampling::warp;
-use crate::texture::Texture;
+use crate::texture::{Texture, TexturePoint};
 use crate::Spectrum;
 
 /// The relative rates of the lobes in sampling (Mitsuba's `*_sampling_rate`).
@@ -136,20 +136,20 @@ impl Principled {
     }
 
     #[inline]
-    fn at(&self, uv: Vec2) -> Point {
-        let metallic = self.metallic.eval_1(uv);
-        let spec_trans = self.spec_trans.eval_1(uv);
+    fn at(&self, p: TexturePoint) -> Point {
+        let metallic = self.metallic.eval_1(p);
+        let spec_trans = self.spec_trans.eval_1(p);
         Point {
-            base_color: self.base_color.eval(uv),
-            roughness: self.roughness.eval_1(uv),
-            anisotropic: self.anisotropic.eval_1(uv),
+            base_color: self.base_color.eval(p),
+            roughness: self.roughness.eval_1(p),
+            anisotropic: self.anisotropic.eval_1(p),
             metallic,
-            spec_tint: self.spec_tint.eval_1(uv),
-            sheen: self.sheen.eval_1(uv),
-            sheen_tint: self.sheen_tint.eval_1(uv),
-            flatness: self.flatness.eval_1(uv),
-            clearcoat: self.clearcoat.eval_1(uv),
-            clearcoat_gloss: self.clearcoat_gloss.eval_1(uv),
+            spec_tint: self.spec_tint.eval_1(p),
+            sheen: self.sheen.eval_1(p),
+            sheen_tint: self.sheen_tint.eval_1(p),
+            flatness: self.flatness.eval_1(p),
+            clearcoat: self.clearcoat.eval_1(p),
+            clearcoat_gloss: self.clearcoat_gloss.eval_1(p),
             brdf: (1.0 - metallic) * (1.0 - spec_trans),
             btdf: (1.0 - metallic) * spec_trans,
         }
@@ -294,12 +294,12 @@ impl Principled {
     /// ρ(wo, wi) in 1/sr, without the cosine.
     #[inline]
     pub fn eval(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> Spectrum {
-        self.eval_at(&self.at(sp.uv), wo, wi)
+        self.eval_at(&self.at(sp.tex()), wo, wi)
     }
 
     #[inline]
     pub fn pdf(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
-        self.pdf_at(&self.at(sp.uv), wo, wi)
+        self.pdf_at(&self.at(sp.tex()), wo, wi)
     }
 
     #[inline]
@@ -308,7 +308,7 @@ impl Principled {
         if cos_o == 0.0 {
             return None;
         }
-        let p = self.at(sp.uv);
+        let p = self.at(sp.tex());
         let front = cos_o > 0.0;
         if !front && !positive(p.btdf) {
             return None;
@@ -417,8 +417,8 @@ mod tests {
         let configs: Vec<Principled> = table_configs()
             .into_iter()
             .map(|mut c| {
-                let r = c.roughness.eval_1(Vec2::ZERO).max(0.3);
-                let g = c.clearcoat_gloss.eval_1(Vec2::ZERO).min(0.3);
+                let r = c.roughness.eval_1(TexturePoint::at_uv(Vec2::ZERO)).max(0.3);
+                let g = c.clearcoat_gloss.eval_1(TexturePoint::at_uv(Vec2::ZERO)).min(0.3);
                 c.roughness = Texture::Constant(Spectrum::splat(r));
                 c.clearcoat_gloss = Texture::Constant(Spectrum::splat(g));
                 c
@@ -427,7 +427,7 @@ mod tests {
         let tests = configs.len() * 3;
         for (i, c) in configs.into_iter().enumerate() {
             // from inside only where there is a transmission to see
-            let inside = c.spec_trans.eval_1(Vec2::ZERO) > 0.0;
+            let inside = c.spec_trans.eval_1(TexturePoint::at_uv(Vec2::ZERO)) > 0.0;
             let b = &Bsdf::Principled(c);
             let thetas: &[f32] = if inside { &[10.0, 60.0, 150.0] } else { &[10.0, 60.0] };
             for (j, &theta) in thetas.iter().enumerate() {

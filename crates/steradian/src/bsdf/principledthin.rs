@@ -39,7 +39,7 @@ use super::disney::{self, faces_agree, schlick_fresnel, schlick_r0};
 use super::fresnel::{fresnel_dielectric, reflect_about};
 use super::{positive, BsdfSample, Lobe, ShadingPoint};
 use crate::sampling::warp;
-use crate::texture::Texture;
+use crate::texture::{Texture, TexturePoint};
 use crate::Spectrum;
 
 /// The relative rates of the lobes in sampling.
@@ -121,18 +121,18 @@ impl PrincipledThin {
     }
 
     #[inline]
-    fn at(&self, uv: Vec2) -> Point {
+    fn at(&self, p: TexturePoint) -> Point {
         Point {
-            base_color: self.base_color.eval(uv),
-            roughness: self.roughness.eval_1(uv),
-            anisotropic: self.anisotropic.eval_1(uv),
-            spec_trans: self.spec_trans.eval_1(uv),
-            eta: self.eta.eval_1(uv),
-            spec_tint: self.spec_tint.eval_1(uv),
-            diff_trans: self.diff_trans.eval_1(uv) / 2.0,
-            sheen: self.sheen.eval_1(uv),
-            sheen_tint: self.sheen_tint.eval_1(uv),
-            flatness: self.flatness.eval_1(uv),
+            base_color: self.base_color.eval(p),
+            roughness: self.roughness.eval_1(p),
+            anisotropic: self.anisotropic.eval_1(p),
+            spec_trans: self.spec_trans.eval_1(p),
+            eta: self.eta.eval_1(p),
+            spec_tint: self.spec_tint.eval_1(p),
+            diff_trans: self.diff_trans.eval_1(p) / 2.0,
+            sheen: self.sheen.eval_1(p),
+            sheen_tint: self.sheen_tint.eval_1(p),
+            flatness: self.flatness.eval_1(p),
         }
     }
 
@@ -236,12 +236,12 @@ impl PrincipledThin {
     /// ρ(wo, wi) in 1/sr, without the cosine.
     #[inline]
     pub fn eval(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> Spectrum {
-        self.eval_at(&self.at(sp.uv), wo, wi)
+        self.eval_at(&self.at(sp.tex()), wo, wi)
     }
 
     #[inline]
     pub fn pdf(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
-        self.pdf_at(&self.at(sp.uv), wo, wi)
+        self.pdf_at(&self.at(sp.tex()), wo, wi)
     }
 
     #[inline]
@@ -251,7 +251,7 @@ impl PrincipledThin {
         }
         let s = if wo.z < 0.0 { -1.0 } else { 1.0 };
         let v = wo * s;
-        let p = self.at(sp.uv);
+        let p = self.at(sp.tex());
         let prob = self.lobe_probabilities(&p);
         let l = match disney::choose(&prob, u1) {
             SPECULAR_REFLECTION => {
@@ -349,7 +349,7 @@ mod tests {
         let configs: Vec<PrincipledThin> = table_configs()
             .into_iter()
             .map(|mut c| {
-                let r = c.roughness.eval_1(Vec2::ZERO).max(0.3);
+                let r = c.roughness.eval_1(TexturePoint::at_uv(Vec2::ZERO)).max(0.3);
                 c.roughness = Texture::Constant(Spectrum::splat(r));
                 c
             })

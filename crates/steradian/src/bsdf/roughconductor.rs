@@ -61,7 +61,7 @@ impl RoughConductor {
     /// The microfacet distribution at the shading point.
     #[inline]
     fn distribution_at(&self, sp: &ShadingPoint) -> MicrofacetDistribution {
-        self.distribution.with_alpha_at(self.alpha_textures.as_deref(), sp.uv)
+        self.distribution.with_alpha_at(self.alpha_textures.as_deref(), sp.tex())
     }
 
     #[inline]
@@ -77,7 +77,7 @@ impl RoughConductor {
         }
         let g = distr.g(wo, wi, h);
         let f = self.ior.fresnel(wo.dot(h));
-        self.specular_reflectance.eval(sp.uv) * f * (d * g / (4.0 * wo.z * wi.z))
+        self.specular_reflectance.eval(sp.tex()) * f * (d * g / (4.0 * wo.z * wi.z))
     }
 
     #[inline]
@@ -109,7 +109,7 @@ impl RoughConductor {
         }
         let pdf = pdf_m / (4.0 * wi.dot(m));
         let f = self.ior.fresnel(wo.dot(m));
-        let weight = self.specular_reflectance.eval(sp.uv) * f * w;
+        let weight = self.specular_reflectance.eval(sp.tex()) * f * w;
         Some(BsdfSample { wi, pdf, weight, lobe: Lobe::Smooth, eta: 1.0 })
     }
 }

@@ -76,7 +76,7 @@ impl RoughDielectric {
     /// The microfacet distribution at the shading point.
     #[inline]
     fn distribution_at(&self, sp: &ShadingPoint) -> MicrofacetDistribution {
-        self.distribution.with_alpha_at(self.alpha_textures.as_deref(), sp.uv)
+        self.distribution.with_alpha_at(self.alpha_textures.as_deref(), sp.tex())
     }
 
     /// The distribution normals are drawn from for viewing cosine `cos_o`.
@@ -116,13 +116,13 @@ impl RoughDielectric {
         }
         let f = fresnel_dielectric(wo.dot(m), self.eta).r;
         if reflect {
-            self.specular_reflectance.eval(sp.uv) * (f * d * g / (4.0 * wo.z.abs() * wi.z.abs()))
+            self.specular_reflectance.eval(sp.tex()) * (f * d * g / (4.0 * wo.z.abs() * wi.z.abs()))
         } else {
             let (om, im) = (wo.dot(m), wi.dot(m));
             let denom = om + eta * im;
             // (1/η²)·η² cancel: the radiance-scaled BTDF
             let v = ((1.0 - f) * d * g * om * im / (wo.z * wi.z * denom * denom)).abs();
-            self.specular_transmittance.eval(sp.uv) * v
+            self.specular_transmittance.eval(sp.tex()) * v
         }
     }
 
@@ -163,7 +163,12 @@ impl RoughDielectric {
             if wi.z * wo.z <= 0.0 {
                 return None;
             }
-            (wi, self.specular_reflectance.eval(sp.uv), pdf_m * fr.r / (4.0 * wi.dot(m)).abs(), 1.0)
+            (
+                wi,
+                self.specular_reflectance.eval(sp.tex()),
+                pdf_m * fr.r / (4.0 * wi.dot(m)).abs(),
+                1.0,
+            )
         } else {
             let wi = refract_about(wo, m, fr.cos_theta_t, fr.eta_ti);
             if wi.z * wo.z >= 0.0 {
@@ -171,7 +176,7 @@ impl RoughDielectric {
             }
             let im = wi.dot(m);
             let dwh = fr.eta_it * fr.eta_it * im / (om + fr.eta_it * im).powi(2);
-            let w = self.specular_transmittance.eval(sp.uv) * (fr.eta_ti * fr.eta_ti);
+            let w = self.specular_transmittance.eval(sp.tex()) * (fr.eta_ti * fr.eta_ti);
             (wi, w, pdf_m * (1.0 - fr.r) * dwh.abs(), fr.eta_it)
         };
         let g = if distr.sample_visible {

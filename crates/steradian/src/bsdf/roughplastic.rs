@@ -111,10 +111,10 @@ impl RoughPlastic {
         let glossy = f * distr.d(h) * distr.g(wo, wi, h) / (4.0 * cos_o * cos_i);
         let a = self
             .internal
-            .effective_albedo(self.diffuse_reflectance.eval(sp.uv), self.internal_reflectance);
+            .effective_albedo(self.diffuse_reflectance.eval(sp.tex()), self.internal_reflectance);
         let diffuse = a
             * (FRAC_1_PI * self.inv_eta_2 * self.transmittance(cos_o) * self.transmittance(cos_i));
-        self.specular_reflectance.eval(sp.uv) * glossy + diffuse
+        self.specular_reflectance.eval(sp.tex()) * glossy + diffuse
     }
 
     #[inline]

@@ -54,9 +54,9 @@ impl ThinDielectric {
     pub fn sample(&self, sp: &ShadingPoint, wo: Vec3, u1: f32, _u2: Vec2) -> Option<BsdfSample> {
         let r = self.reflectance(wo.z);
         let (wi, weight) = if u1 <= r {
-            (reflect(wo), self.specular_reflectance.eval(sp.uv))
+            (reflect(wo), self.specular_reflectance.eval(sp.tex()))
         } else {
-            (-wo, self.specular_transmittance.eval(sp.uv))
+            (-wo, self.specular_transmittance.eval(sp.tex()))
         };
         Some(BsdfSample { wi, pdf: 1.0, weight, lobe: Lobe::Delta, eta: 1.0 })
     }

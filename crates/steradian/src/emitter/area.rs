@@ -14,7 +14,7 @@ use super::{EmitterSample, Support};
 use crate::geometry::is_positive;
 use crate::geometry::SurfacePoint;
 use crate::shape::{Shape, UvRequest};
-use crate::texture::Texture;
+use crate::texture::{Texture, TexturePoint};
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -35,7 +35,7 @@ impl AreaLight {
     #[inline]
     pub fn radiance(&self, wo: Vec3, n: Vec3, uv: Vec2) -> Spectrum {
         if n.dot(wo) > 0.0 {
-            self.radiance.eval(uv)
+            self.radiance.eval(TexturePoint::at_uv(uv))
         } else {
             Spectrum::ZERO
         }
@@ -58,7 +58,7 @@ impl AreaLight {
             wi: ds.wi,
             dist: ds.dist,
             pdf: ds.pdf,
-            weight: self.radiance.eval(ds.uv) / ds.pdf,
+            weight: self.radiance.eval(TexturePoint::at_uv(ds.uv)) / ds.pdf,
             support: Support::Extended,
         })
     }

@@ -23,7 +23,7 @@ use glam::{Vec2, Vec3};
 
 use super::{EmitterSample, Support};
 use crate::geometry::{is_positive, Transform};
-use crate::texture::Texture;
+use crate::texture::{Texture, TexturePoint};
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -83,7 +83,7 @@ impl Projector {
         }
         let (wi, dist, _) = super::towards(self.position, p)?;
         let cos = -self.axis.dot(wi);
-        let e = self.irradiance.eval(uv);
+        let e = self.irradiance.eval(TexturePoint::at_uv(uv));
         if !is_positive(cos) || e == Spectrum::ZERO {
             return None;
         }

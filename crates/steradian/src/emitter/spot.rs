@@ -20,7 +20,7 @@ use glam::{Vec2, Vec3};
 use super::{EmitterSample, Support};
 use crate::geometry::{Frame, Transform};
 use crate::param::ParamError;
-use crate::texture::Texture;
+use crate::texture::{Texture, TexturePoint};
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -115,7 +115,7 @@ impl SpotLight {
             Some(slide) => {
                 let l = slide.to_local.vector(d).normalize();
                 let k = 0.5 / (l.z * slide.uv_factor);
-                i * slide.texture.eval(Vec2::new(0.5 + l.x * k, 0.5 + l.y * k))
+                i * slide.texture.eval(TexturePoint::at_uv(Vec2::new(0.5 + l.x * k, 0.5 + l.y * k)))
             }
         }
     }

@@ -42,6 +42,9 @@ pub struct SurfaceInteraction {
     pub shape: u32,
     /// Index of the primitive inside the shape.
     pub prim: u32,
+    /// Barycentric coordinates (b1, b2) of the hit on triangle `prim` (mesh attributes are
+    /// interpolated with them); the shape's own (u, v) for other shapes.
+    pub bary: Vec2,
 }
 
 /// Offset for spawned rays, relative to the magnitude of the coordinates: floating-point

@@ -142,6 +142,7 @@ impl Cylinder {
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,
+            bary: hit.uv,
         }
     }
 

@@ -89,6 +89,7 @@ impl Disk {
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,
+            bary: hit.uv,
         }
     }
 

@@ -262,6 +262,7 @@ impl Mesh {
             wo: -ray.d,
             shape: hit.shape,
             prim,
+            bary: hit.uv,
         }
     }
 

@@ -34,7 +34,7 @@ pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use mesh::{Mesh, MeshData};
 pub use obj::{read_obj, DEFAULT_FLIP_TEX_COORDS};
-pub use ply::read_ply;
+pub use ply::{read_ply, read_ply_with_attributes};
 pub use rectangle::Rectangle;
 pub use serialized::{read_serialized, SerializedShape};
 pub use sphere::Sphere;

@@ -130,6 +130,7 @@ impl Rectangle {
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,
+            bary: hit.uv,
         }
     }
 

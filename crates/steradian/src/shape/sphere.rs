@@ -158,6 +158,7 @@ impl Sphere {
             wo: -ray.d,
             shape: hit.shape,
             prim: hit.prim,
+            bary: hit.uv,
         }
     }
 

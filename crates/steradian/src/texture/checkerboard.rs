@@ -16,7 +16,7 @@
 
 use glam::Vec2;
 
-use super::{Texture, UvTransform};
+use super::{Texture, TexturePoint, UvTransform};
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]
@@ -45,21 +45,21 @@ impl Checkerboard {
     }
 
     #[inline]
-    pub fn eval(&self, uv: Vec2) -> Spectrum {
-        if self.first(uv) {
-            self.color0.eval(uv)
+    pub fn eval(&self, p: TexturePoint) -> Spectrum {
+        if self.first(p.uv) {
+            self.color0.eval(p)
         } else {
-            self.color1.eval(uv)
+            self.color1.eval(p)
         }
     }
 
     /// Mitsuba's scalar lookup: parity inverted (see the module docs).
     #[inline]
-    pub fn eval_1(&self, uv: Vec2) -> f32 {
-        if self.first(uv) {
-            self.color1.eval_1(uv)
+    pub fn eval_1(&self, p: TexturePoint) -> f32 {
+        if self.first(p.uv) {
+            self.color1.eval_1(p)
         } else {
-            self.color0.eval_1(uv)
+            self.color0.eval_1(p)
         }
     }
 }
@@ -84,21 +84,21 @@ mod tests {
             ([1.1, 0.1], 0.4),
             ([-0.1, 0.1], 0.2),
         ] {
-            assert_eq!(c.eval(Vec2::from(uv)), Spectrum::splat(v), "{uv:?}");
+            assert_eq!(c.eval(TexturePoint::at_uv(Vec2::from(uv))), Spectrum::splat(v), "{uv:?}");
         }
         let s = Checkerboard {
             to_uv: UvTransform { m: glam::Mat2::from_diagonal(Vec2::splat(4.0)), t: Vec2::ZERO },
             ..c.clone()
         };
-        assert_eq!(s.eval(Vec2::new(0.2, 0.1)), Spectrum::splat(0.2));
+        assert_eq!(s.eval(TexturePoint::at_uv(Vec2::new(0.2, 0.1))), Spectrum::splat(0.2));
         // Mitsuba's eval_1 quirk: 0.2 at (0.1, 0.1) where eval gives 0.4
-        assert_eq!(c.eval_1(Vec2::new(0.1, 0.1)), 0.2);
+        assert_eq!(c.eval_1(TexturePoint::at_uv(Vec2::new(0.1, 0.1))), 0.2);
         let red = Checkerboard::new(
             Spectrum::X.into(),
             Spectrum::splat(0.2).into(),
             UvTransform::IDENTITY,
         );
-        assert!((red.eval_1(Vec2::new(0.3, 0.6)) - 1.0 / 3.0).abs() < 1e-6);
+        assert!((red.eval_1(TexturePoint::at_uv(Vec2::new(0.3, 0.6))) - 1.0 / 3.0).abs() < 1e-6);
         assert!(
             (Texture::Checkerboard(red).mean() - Spectrum::new(0.6, 0.1, 0.1)).abs().max_element()
                 < 1e-6

@@ -1,6 +1,6 @@
 //! Textures: spatially varying quantities (reflectances, radiances, roughnesses, opacities)
-//! looked up at a surface point's (u, v). A texture returns values in the unit of the
-//! parameter it feeds.
+//! looked up at a surface point ([`TexturePoint`]: its (u, v), and for mesh attributes the
+//! triangle and barycentrics). A texture returns values in the unit of the parameter it feeds.
 //!
 //! Like Mitsuba 3, a texture can be asked for a colour ([`Texture::eval`]) or for one number
 //! ([`Texture::eval_1`], used by scalar parameters such as `alpha`, `opacity` or `weight`);
@@ -10,16 +10,39 @@
 mod bitmap;
 mod checkerboard;
 mod image_file;
+mod mesh_attribute;
 mod rgbe;
 
 pub use bitmap::{srgb_to_linear, Bitmap, FilterType, UvTransform, WrapMode};
 pub use checkerboard::Checkerboard;
 pub use image_file::{read_image, ImageFormat, LoadedImage};
+pub use mesh_attribute::{AttributeScope, MeshAttribute, MeshAttributeData};
 pub use rgbe::decode_rgbe;
 
 use glam::Vec2;
 
 use crate::Spectrum;
+
+/// Where a texture is evaluated: surface coordinates, and the triangle and barycentric
+/// coordinates (b1, b2) that `mesh_attribute` interpolates with.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TexturePoint {
+    /// Surface (texture) coordinates.
+    pub uv: Vec2,
+    /// Index of the primitive inside its shape; `u32::MAX` when the point is not on one.
+    pub prim: u32,
+    /// Barycentric coordinates of vertices 1 and 2 of triangle `prim` (vertex 0 has
+    /// 1 − b1 − b2).
+    pub bary: Vec2,
+}
+
+impl TexturePoint {
+    /// A point known only by its surface coordinates (no triangle).
+    #[inline]
+    pub fn at_uv(uv: Vec2) -> Self {
+        TexturePoint { uv, prim: u32::MAX, bary: Vec2::ZERO }
+    }
+}
 
 /// A texture. Closed enum: one variant per texture plugin.
 #[derive(Clone, Debug, PartialEq)]
@@ -31,44 +54,72 @@ pub enum Texture {
     Bitmap(Bitmap),
     /// `checkerboard`: two alternating textures.
     Checkerboard(Checkerboard),
+    /// `mesh_attribute`: a per-vertex or per-face attribute of the mesh.
+    MeshAttribute(MeshAttribute),
 }
 
 impl Texture {
-    /// The value at surface coordinates `uv`.
+    /// The value at point `p`.
     #[inline]
-    pub fn eval(&self, uv: Vec2) -> Spectrum {
+    pub fn eval(&self, p: TexturePoint) -> Spectrum {
         match self {
             Texture::Constant(v) => *v,
-            Texture::Bitmap(b) => b.eval(uv),
-            Texture::Checkerboard(c) => c.eval(uv),
+            Texture::Bitmap(b) => b.eval(p.uv),
+            Texture::Checkerboard(c) => c.eval(p),
+            Texture::MeshAttribute(m) => m.eval(p),
         }
     }
 
     /// The value as one number, for scalar parameters (Mitsuba's `eval_1`): the channel mean
-    /// of a constant, the luminance of a bitmap.
+    /// of a constant, the luminance of a bitmap, the value of a 1-channel mesh attribute.
     #[inline]
-    pub fn eval_1(&self, uv: Vec2) -> f32 {
+    pub fn eval_1(&self, p: TexturePoint) -> f32 {
         match self {
             Texture::Constant(v) => v.element_sum() / 3.0,
-            Texture::Bitmap(b) => b.eval_1(uv),
-            Texture::Checkerboard(c) => c.eval_1(uv),
+            Texture::Bitmap(b) => b.eval_1(p.uv),
+            Texture::Checkerboard(c) => c.eval_1(p),
+            Texture::MeshAttribute(m) => m.eval_1(p),
         }
     }
 
     /// The gradient (∂/∂u, ∂/∂v) of [`Texture::eval_1`] (per unit of u, v), for bump maps.
-    /// `None` for textures Mitsuba cannot differentiate (`checkerboard`).
+    /// `None` for textures Mitsuba cannot differentiate (`checkerboard`, `mesh_attribute`).
     #[inline]
-    pub fn eval_1_grad(&self, uv: Vec2) -> Option<Vec2> {
+    pub fn eval_1_grad(&self, p: TexturePoint) -> Option<Vec2> {
         match self {
             Texture::Constant(_) => Some(Vec2::ZERO),
-            Texture::Bitmap(b) => Some(b.eval_1_grad(uv)),
-            Texture::Checkerboard(_) => None,
+            Texture::Bitmap(b) => Some(b.eval_1_grad(p.uv)),
+            Texture::Checkerboard(_) | Texture::MeshAttribute(_) => None,
         }
     }
 
     /// True when [`Texture::eval_1_grad`] is defined (a bump map can use the texture).
     pub fn has_gradient(&self) -> bool {
-        !matches!(self, Texture::Checkerboard(_))
+        !matches!(self, Texture::Checkerboard(_) | Texture::MeshAttribute(_))
+    }
+
+    /// True when the texture, anywhere in its tree, reads the attributes of the mesh it is
+    /// evaluated on (so it needs a point on a triangle, not only (u, v)).
+    pub fn uses_mesh_attributes(&self) -> bool {
+        match self {
+            Texture::Constant(_) | Texture::Bitmap(_) => false,
+            Texture::Checkerboard(c) => {
+                c.color0.uses_mesh_attributes() || c.color1.uses_mesh_attributes()
+            }
+            Texture::MeshAttribute(_) => true,
+        }
+    }
+
+    /// The number of channels when a scalar reading ([`Texture::eval_1`]) is undefined in
+    /// Mitsuba: a 3-channel mesh attribute anywhere in the tree.
+    pub fn scalar_reading_refused(&self) -> Option<&str> {
+        match self {
+            Texture::Constant(_) | Texture::Bitmap(_) => None,
+            Texture::Checkerboard(c) => {
+                c.color0.scalar_reading_refused().or_else(|| c.color1.scalar_reading_refused())
+            }
+            Texture::MeshAttribute(m) => (m.channels() != 1).then_some(m.name.as_str()),
+        }
     }
 
     /// The largest value of any channel anywhere (for energy checks and sampling weights).
@@ -77,15 +128,18 @@ impl Texture {
             Texture::Constant(v) => v.max_element(),
             Texture::Bitmap(b) => b.max_value(),
             Texture::Checkerboard(c) => c.color0.max_value().max(c.color1.max_value()),
+            Texture::MeshAttribute(m) => m.max_value(),
         }
     }
 
-    /// The mean value over the texture's domain (the unit square of uv), per channel.
+    /// The mean value over the texture's domain (the unit square of uv; a mesh attribute's
+    /// elements), per channel.
     pub fn mean(&self) -> Spectrum {
         match self {
             Texture::Constant(v) => *v,
             Texture::Bitmap(b) => b.mean(),
             Texture::Checkerboard(c) => 0.5 * (c.color0.mean() + c.color1.mean()),
+            Texture::MeshAttribute(m) => m.mean(),
         }
     }
 }

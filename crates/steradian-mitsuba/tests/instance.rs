@@ -23,8 +23,11 @@ fn z(job: &Job, what: &str) -> ZTest {
 fn instances_match_mitsuba() {
     let job =
         steradian_mitsuba::load_file(&data("instance.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
-    // the light, the floor, and two members for each of the three instances
-    assert_eq!(job.scene.shapes.len(), 2 + 3 * 2);
+    // the light and the floor are the scene's shapes; the group's two members are built once
+    // and each instance is one entry of the scene's hierarchy
+    assert_eq!(job.scene.shapes.len(), 2);
+    let stats = job.scene.accel_stats();
+    assert_eq!((stats.triangles, stats.instances, stats.analytic_prims), (4, 3, 3), "{stats:?}");
     // the members' BSDFs are built once and shared by the copies
     assert_eq!(job.scene.bsdfs.len(), 4, "{:?}", job.scene.bsdfs.len());
     assert!(z(&job, "instances").passes());
@@ -78,4 +81,42 @@ fn what_a_group_cannot_hold_is_refused() {
         assert_eq!(e.pos.as_ref().map(|p| p.line), Some(line), "{e}");
         assert!(e.message.contains(needle), "{e}");
     }
+}
+
+/// Many instances share one copy of the group: the scene's hierarchy holds one entry per
+/// instance and none of the group's triangles, and a member's mesh attributes still shade it.
+#[test]
+fn instances_share_one_copy_of_the_geometry() {
+    let mut xml = String::from(
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<shape type=\"shapegroup\" id=\"g\">\n\
+         <shape type=\"ply\"><string name=\"filename\" value=\"mesh_attribute/sphere.ply\"/>\n\
+         <bsdf type=\"diffuse\"><texture type=\"mesh_attribute\" name=\"reflectance\">\n\
+         <string name=\"name\" value=\"vertex_color\"/></texture></bsdf></shape>\n</shape>\n",
+    );
+    for i in 0..500 {
+        let (x, z) = ((i % 25) as f32 * 2.5 - 30.0, (i / 25) as f32 * 2.5 - 25.0);
+        xml += &format!(
+            "<shape type=\"instance\"><ref id=\"g\"/><transform name=\"to_world\">\
+             <translate x=\"{x}\" z=\"{z}\"/></transform></shape>\n"
+        );
+    }
+    xml +=
+        "<emitter type=\"constant\"/>\n<sensor type=\"perspective\"><transform name=\"to_world\">\
+            <lookat origin=\"0, 30, 30\" target=\"0, 0, 0\" up=\"0, 1, 0\"/></transform>\
+            <film type=\"hdrfilm\"><integer name=\"width\" value=\"32\"/>\
+            <integer name=\"height\" value=\"32\"/></film></sensor>\n</scene>";
+    let job = steradian_mitsuba::load_string(&xml, Path::new("many.xml"), &data(""), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let stats = job.scene.accel_stats();
+    assert_eq!((stats.triangles, stats.instances), (0, 500), "{stats:?}");
+    let out = steradian::render::render(
+        &job,
+        &steradian::render::RenderOptions { spp: Some(4), seed: Some(1), ..Default::default() },
+    )
+    .unwrap();
+    assert_eq!(out.dropped_samples, 0);
+    // vertex colours in [0.05, 0.95] under a unit sky (the background, 1): the spheres seen
+    // darken the image, and are not black
+    let [r, g, b] = out.film.develop().channel_means();
+    assert!([r, g, b].iter().all(|&m| m > 0.3 && m < 0.95), "{r} {g} {b}");
 }

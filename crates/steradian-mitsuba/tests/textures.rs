@@ -280,7 +280,7 @@ fn mistyped_parameters() {
         "<shape type=\"sphere\"><bsdf type=\"bumpmap\">\n  <texture type=\"checkerboard\"/><bsdf type=\"diffuse\"/>\n</bsdf></shape>",
         5,
         3,
-        &["checkerboard has no gradient"],
+        &["checkerboard or mesh_attribute has no gradient"],
     );
     // Mitsuba's roughplastic precomputes tables for one α: numbers only
     err(

@@ -5,11 +5,13 @@
 
 use glam::{Vec2, Vec3};
 
-use crate::accel::Accel;
+use std::sync::Arc;
+
+use crate::accel::{Accel, AccelStats, Instance, Isa, ShapeGroup};
 use crate::bsdf::Bsdf;
 use crate::emitter::{Emitter, EmitterSample, LightSelection, Support};
 use crate::geometry::SurfacePoint;
-use crate::geometry::{Aabb, Ray, SurfaceInteraction};
+use crate::geometry::{Aabb, Ray, SurfaceInteraction, Transform, NO_INSTANCE};
 use crate::sensor::Sensor;
 use crate::shape::Shape;
 
@@ -24,10 +26,24 @@ pub struct ShapeBinding {
     pub id: String,
 }
 
+/// A placed copy of a shape group ([`SceneDescription::groups`]): Mitsuba's `instance`.
+#[derive(Clone, Debug)]
+pub struct InstanceDescription {
+    /// Index into [`SceneDescription::groups`].
+    pub group: u32,
+    /// Group space to world.
+    pub to_world: Transform,
+}
+
 /// Everything a scene is made of, before the acceleration structure is built.
 #[derive(Clone, Debug, Default)]
 pub struct SceneDescription {
     pub shapes: Vec<(Shape, ShapeBinding)>,
+    /// Shape groups (Mitsuba's `shapegroup`): shapes in their group's space, rendered only
+    /// through `instances`; one copy of each group's geometry and BVH serves all its
+    /// instances. Their bindings carry no emitter.
+    pub groups: Vec<Vec<(Shape, ShapeBinding)>>,
+    pub instances: Vec<InstanceDescription>,
     pub bsdfs: Vec<Bsdf>,
     pub emitters: Vec<Emitter>,
     pub sensors: Vec<Sensor>,
@@ -46,6 +62,8 @@ pub struct Scene {
     /// The light at infinity that escaping rays see (Mitsuba allows one).
     pub environment: Option<u32>,
     pub sensors: Vec<Sensor>,
+    /// The bindings of each group's members, by instance (a hit's `instance` indexes it).
+    instance_bindings: Vec<Arc<[ShapeBinding]>>,
     accel: Accel,
     /// Next-event estimation's light choice: probability of each emitter, and the running sum.
     light_pmf: Vec<f32>,
@@ -114,7 +132,38 @@ impl Scene {
                 "only one environment emitter (`constant` or `envmap`) is allowed per scene".into(),
             );
         }
-        let accel = Accel::build(&shapes);
+        let mut groups = Vec::with_capacity(desc.groups.len());
+        for (g, members) in desc.groups.into_iter().enumerate() {
+            let (members, bindings): (Vec<Shape>, Vec<ShapeBinding>) = members.into_iter().unzip();
+            for (i, b) in bindings.iter().enumerate() {
+                if b.bsdf as usize >= desc.bsdfs.len() {
+                    return Err(format!(
+                        "member {i} of group {g} refers to BSDF {} of {}",
+                        b.bsdf,
+                        desc.bsdfs.len()
+                    ));
+                }
+                if b.emitter.is_some() {
+                    return Err(format!("member {i} of group {g} is an emitter"));
+                }
+            }
+            groups
+                .push((Arc::new(ShapeGroup::new(members)), Arc::<[ShapeBinding]>::from(bindings)));
+        }
+        let mut instances = Vec::with_capacity(desc.instances.len());
+        let mut instance_bindings = Vec::with_capacity(desc.instances.len());
+        for (i, inst) in desc.instances.iter().enumerate() {
+            let Some((group, bindings)) = groups.get(inst.group as usize) else {
+                return Err(format!(
+                    "instance {i} refers to group {} of {}",
+                    inst.group,
+                    groups.len()
+                ));
+            };
+            instances.push(Instance::new(group.clone(), inst.to_world));
+            instance_bindings.push(bindings.clone());
+        }
+        let accel = Accel::build_with_instances(&shapes, instances, Isa::detect());
         let mut sensors = desc.sensors;
         for sensor in &mut sensors {
             sensor.set_scene(&accel.bounds());
@@ -131,8 +180,14 @@ impl Scene {
             emitters: desc.emitters,
             environment: envs.first().copied(),
             sensors,
+            instance_bindings,
             accel,
         })
+    }
+
+    /// Sizes of the scene's top-level hierarchy.
+    pub fn accel_stats(&self) -> AccelStats {
+        self.accel.stats()
     }
 
     /// Bounds of all geometry.
@@ -144,7 +199,11 @@ impl Scene {
     #[inline]
     pub fn intersect(&self, ray: &Ray) -> Option<SurfaceInteraction> {
         let hit = self.accel.intersect(&self.shapes, ray)?;
-        Some(self.shapes[hit.shape as usize].interaction(ray, &hit))
+        Some(if hit.instance == NO_INSTANCE {
+            self.shapes[hit.shape as usize].interaction(ray, &hit)
+        } else {
+            self.accel.instance(hit.instance).interaction(ray, &hit)
+        })
     }
 
     /// True when something blocks the ray before `ray.t_max`.
@@ -153,15 +212,25 @@ impl Scene {
         self.accel.occluded(&self.shapes, ray)
     }
 
+    /// The binding of the shape hit (the scene's own or an instanced group member's).
+    #[inline]
+    fn binding(&self, si: &SurfaceInteraction) -> &ShapeBinding {
+        if si.instance == NO_INSTANCE {
+            &self.bindings[si.shape as usize]
+        } else {
+            &self.instance_bindings[si.instance as usize][si.shape as usize]
+        }
+    }
+
     #[inline]
     pub fn bsdf(&self, si: &SurfaceInteraction) -> &Bsdf {
-        &self.bsdfs[self.bindings[si.shape as usize].bsdf as usize]
+        &self.bsdfs[self.binding(si).bsdf as usize]
     }
 
     /// The area light of the shape hit, if any.
     #[inline]
     pub fn area_emitter(&self, si: &SurfaceInteraction) -> Option<(u32, &Emitter)> {
-        let e = self.bindings[si.shape as usize].emitter?;
+        let e = self.binding(si).emitter?;
         Some((e, &self.emitters[e as usize]))
     }
 

@@ -37,6 +37,8 @@ pub(crate) struct Builder {
     desc: SceneDescription,
     /// BSDFs already built, by node identity (shared through `<ref>`).
     bsdf_cache: HashMap<*const PluginNode, u32>,
+    /// Shape groups already built, by node identity: index into the scene's groups.
+    group_cache: HashMap<*const PluginNode, u32>,
     default_bsdf: Option<u32>,
     black_bsdf: Option<u32>,
     /// Directory for relative paths when the scene did not come from a file.
@@ -224,6 +226,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
     let mut b = Builder {
         desc: SceneDescription::default(),
         bsdf_cache: HashMap::new(),
+        group_cache: HashMap::new(),
         default_bsdf: None,
         black_bsdf: None,
         base_dir: base_dir.to_path_buf(),

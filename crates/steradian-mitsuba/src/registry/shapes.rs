@@ -5,16 +5,15 @@
 //! each `instance` (a `<ref>` to a group and a `to_world`) places all of them, the instance's
 //! `to_world` applied after each shape's own, as in Mitsuba 3. Shapes in a group keep their
 //! BSDFs (one BSDF object shared by every copy); emitters, sensors, nested groups and instances
-//! in a group are refused, as Mitsuba refuses them. steradian differs in how it stores them:
-//! each instance is a transformed copy of the group's geometry in the one scene BVH (Mitsuba
-//! keeps one copy and a two-level BVH), so memory grows with the number of instances; images
-//! are the same.
+//! in a group are refused, as Mitsuba refuses them. As in Mitsuba, a group's geometry is built
+//! once, with its own BVH, the first time an instance refers to it, and each instance is one
+//! entry of the scene's BVH (`steradian::accel`'s two-level hierarchy): memory grows with the
+//! groups' geometry, not with the number of instances; a group no instance uses costs nothing.
 
 use std::sync::Arc;
 
-use steradian::geometry::Transform;
-use steradian::scene::ShapeBinding;
-use steradian::shape;
+use steradian::scene::{InstanceDescription, ShapeBinding};
+use steradian::shape::{self, Shape};
 
 use super::geometry::{ShapeArgs, SHAPES};
 use super::{emitters, lookup, AttributeSource, Builder, MeshAttributes};
@@ -28,7 +27,7 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
     match node.plugin_type.as_str() {
         "shapegroup" => check_group(node),
         "instance" => instance(b, node),
-        _ => build_placed(b, node, None),
+        _ => build_placed(b, node),
     }
 }
 
@@ -98,25 +97,43 @@ fn instance(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadError> {
         }
     };
     node.check_all_used()?;
-    for member in group_members(&group)? {
-        build_placed(b, member, Some(&to_world))?;
-    }
+    let group = group_index(b, &group)?;
+    b.desc.instances.push(InstanceDescription { group, to_world });
     Ok(())
 }
 
-/// Builds a shape node, placed by `instance_to_world` after its own `to_world` when it is a
-/// member of an instanced group, and adds it (with its BSDF and area light) to the scene.
-fn build_placed(
+/// The index of `group` in the scene's groups, its members built the first time.
+fn group_index(b: &mut Builder, group: &Arc<PluginNode>) -> Result<u32, LoadError> {
+    let key = Arc::as_ptr(group);
+    if let Some(&g) = b.group_cache.get(&key) {
+        return Ok(g);
+    }
+    let mut members = Vec::new();
+    for member in group_members(group)? {
+        members.push(build_shape_node(b, member)?);
+    }
+    b.desc.groups.push(members);
+    let g = (b.desc.groups.len() - 1) as u32;
+    b.group_cache.insert(key, g);
+    Ok(g)
+}
+
+/// Builds a scene-level shape node and adds it (with its BSDF and area light) to the scene.
+fn build_placed(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadError> {
+    let shape = build_shape_node(b, node)?;
+    b.desc.shapes.push(shape);
+    Ok(())
+}
+
+/// A shape node's shape and binding (its BSDF, its area light, added to the scene's lists;
+/// its nested sensors are added to the scene's), for the next entry of the scene's shapes
+/// or, without emitters and sensors, of a group's.
+fn build_shape_node(
     b: &mut Builder,
     node: &Arc<PluginNode>,
-    instance_to_world: Option<&Transform>,
-) -> Result<(), LoadError> {
+) -> Result<(Shape, ShapeBinding), LoadError> {
     let p = &node.props;
-    let own = p.get_transform("to_world")?.unwrap_or_default();
-    let to_world = match instance_to_world {
-        Some(t) => own.then(t),
-        None => own,
-    };
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let flip_normals = p.get_bool("flip_normals")?.unwrap_or(shape::DEFAULT_FLIP_NORMALS);
     let build_shape = lookup(SHAPES, node)?;
     b.mesh_attributes.replace(AttributeSource::None);
@@ -174,8 +191,5 @@ fn build_placed(
         b.desc.sensors.push(sensor);
     }
     node.check_all_used()?;
-    b.desc
-        .shapes
-        .push((shape, ShapeBinding { bsdf, emitter, id: node.id.clone().unwrap_or_default() }));
-    Ok(())
+    Ok((shape, ShapeBinding { bsdf, emitter, id: node.id.clone().unwrap_or_default() }))
 }

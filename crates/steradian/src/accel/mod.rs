@@ -11,6 +11,9 @@
 //!   mesh (sizes asserted in `wide.rs`). Rectangles enter as their two triangles
 //!   ([`crate::shape::Shape::triangle`]); curved shapes (spheres, disks, cylinders) are a
 //!   second leaf kind tested through [`crate::shape::Shape::intersect_prim`].
+//! - Instances (`instance.rs`): a shape group has its own BVH; each instance of it is one
+//!   primitive of the scene's BVH (a third use of the analytic leaves), traced by taking the
+//!   ray into the group's space.
 //! - Triangles (`triangle.rs`): the watertight test of Woop, Benthin & Wald (2013).
 //! - Traversal (`traverse.rs`): ordered closest hit and first-hit occlusion with a fixed stack,
 //!   robust box tests (Ize 2013), kernels (`simd.rs`) chosen once at build time by runtime CPU
@@ -21,12 +24,14 @@
 //! `docs/design/2026-12-01-bvh-layout.md`; the comparison with Embree 3
 //! (`benches/embree/run.sh`) in `benches/README.md`.
 
+mod instance;
 mod kernel;
 mod sah_build;
 mod simd;
 mod traverse;
 mod wide;
 
+pub use instance::{Instance, ShapeGroup};
 pub use wide::{Accel, AccelStats, Isa};
 
 #[cfg(test)]

@@ -24,8 +24,10 @@ use std::mem::MaybeUninit;
 use glam::Vec2;
 
 use super::kernel::{Kernel, TravRay};
-use super::wide::{leaf_range, Accel, Isa, Node8, Tri4, ANALYTIC, EMPTY_CHILD, LEAF, WIDTH};
-use crate::geometry::{PreliminaryHit, Ray};
+use super::wide::{
+    leaf_range, Accel, Isa, Node8, Tri4, ANALYTIC, EMPTY_CHILD, INSTANCE_REF, LEAF, WIDTH,
+};
+use crate::geometry::{PreliminaryHit, Ray, NO_INSTANCE};
 use crate::shape::Shape;
 
 /// Stack entries. The binary tree is at most `SAH_MAX_DEPTH + 33` levels deep (median splits
@@ -130,7 +132,7 @@ fn prefetch(accel: &Accel, code: u32) {
 /// # Safety
 /// The CPU supports the instruction set of `K`.
 #[inline(always)]
-pub(super) unsafe fn closest<K: Kernel>(
+pub(super) unsafe fn closest<K: Kernel, const INSTANCES: bool>(
     accel: &Accel,
     shapes: &[Shape],
     ray: &Ray,
@@ -143,6 +145,8 @@ pub(super) unsafe fn closest<K: Kernel>(
     // (packet, lane, b1, b2) for triangles, (index into `others`, ANALYTIC_HIT, u, v) otherwise:
     // the indices are looked up once, after the search
     let mut hit: Option<(u32, u32, f32, f32)> = None;
+    // the member and primitive of the closest hit when it is on an instance
+    let mut member = (0u32, 0u32);
     let mut stack = Stack::new();
     let mut dist = [0.0f32; WIDTH];
     let mut code = accel.root;
@@ -190,7 +194,16 @@ pub(super) unsafe fn closest<K: Kernel>(
             for i in leaf_range(code) {
                 let r = &accel.others[i];
                 let sub = Ray::new(ray.o, ray.d, t_max);
-                if let Some((t, uv)) = shapes[r.shape as usize].intersect_prim(r.prim, &sub) {
+                if INSTANCES && r.shape == INSTANCE_REF {
+                    // SAFETY: forwarded from the caller.
+                    let h = unsafe { closest_in_instance::<K>(accel, r.prim, &sub, t_min) };
+                    if let Some(h) = h {
+                        t_max = h.t;
+                        hit = Some((i as u32, ANALYTIC_HIT, h.uv.x, h.uv.y));
+                        member = (h.shape, h.prim);
+                    }
+                } else if let Some((t, uv)) = shapes[r.shape as usize].intersect_prim(r.prim, &sub)
+                {
                     if t > t_min {
                         t_max = t;
                         hit = Some((i as u32, ANALYTIC_HIT, uv.x, uv.y));
@@ -203,14 +216,18 @@ pub(super) unsafe fn closest<K: Kernel>(
             match stack.pop() {
                 None => {
                     return hit.map(|(index, lane, b1, b2)| {
-                        let (shape, prim) = if lane == ANALYTIC_HIT {
+                        let (shape, prim, instance) = if lane == ANALYTIC_HIT {
                             let r = &accel.others[index as usize];
-                            (r.shape, r.prim)
+                            if r.shape == INSTANCE_REF {
+                                (member.0, member.1, r.prim)
+                            } else {
+                                (r.shape, r.prim, NO_INSTANCE)
+                            }
                         } else {
                             let ids = &accel.tri_ids[index as usize];
-                            (ids.shape[lane as usize], ids.prim[lane as usize])
+                            (ids.shape[lane as usize], ids.prim[lane as usize], NO_INSTANCE)
                         };
-                        PreliminaryHit { t: t_max, uv: Vec2::new(b1, b2), shape, prim }
+                        PreliminaryHit { t: t_max, uv: Vec2::new(b1, b2), shape, prim, instance }
                     })
                 }
                 Some(e) if e.dist <= t_max => {
@@ -223,12 +240,54 @@ pub(super) unsafe fn closest<K: Kernel>(
     }
 }
 
+/// The closest hit on instance `i` of `accel` with `t_min < t < ray.t_max` (world distances),
+/// traced through its group's hierarchy with the same kernels. A separate function (the
+/// group's traversal is the `INSTANCES = false` copy, which has no instances to visit), so
+/// that the top-level traversal is not recursive and stays inlined in its callers.
+///
+/// # Safety
+/// The CPU supports the instruction set of `K`.
+#[inline(never)]
+unsafe fn closest_in_instance<K: Kernel>(
+    accel: &Accel,
+    i: u32,
+    ray: &Ray,
+    t_min: f32,
+) -> Option<PreliminaryHit> {
+    let instance = &accel.instances[i as usize];
+    let group = &instance.group;
+    let (local, scale) = instance.local_ray(ray)?;
+    if group.accel.root == EMPTY_CHILD {
+        return None;
+    }
+    // SAFETY: forwarded from the caller.
+    let mut hit =
+        unsafe { closest::<K, false>(&group.accel, &group.shapes, &local, t_min * scale) }?;
+    hit.t /= scale;
+    hit.instance = i;
+    (hit.t > t_min && hit.t < ray.t_max).then_some(hit)
+}
+
+/// Whether instance `i` of `accel` blocks the ray between `t_min` and `ray.t_max`.
+///
+/// # Safety
+/// The CPU supports the instruction set of `K`.
+#[inline(never)]
+unsafe fn any_in_instance<K: Kernel>(accel: &Accel, i: u32, ray: &Ray, t_min: f32) -> bool {
+    let instance = &accel.instances[i as usize];
+    let group = &instance.group;
+    let Some((local, scale)) = instance.local_ray(ray) else { return false };
+    // SAFETY: forwarded from the caller.
+    group.accel.root != EMPTY_CHILD
+        && unsafe { any::<K, false>(&group.accel, &group.shapes, &local, t_min * scale) }
+}
+
 /// Whether anything is hit with `t_min < t < ray.t_max`; stops at the first hit.
 ///
 /// # Safety
 /// The CPU supports the instruction set of `K`.
 #[inline(always)]
-pub(super) unsafe fn any<K: Kernel>(
+pub(super) unsafe fn any<K: Kernel, const INSTANCES: bool>(
     accel: &Accel,
     shapes: &[Shape],
     ray: &Ray,
@@ -272,10 +331,15 @@ pub(super) unsafe fn any<K: Kernel>(
             }
         } else if code != EMPTY_CHILD {
             for r in &accel.others[leaf_range(code)] {
-                if shapes[r.shape as usize]
-                    .intersect_prim(r.prim, ray)
-                    .is_some_and(|(t, _)| t > t_min)
-                {
+                let blocked = if INSTANCES && r.shape == INSTANCE_REF {
+                    // SAFETY: forwarded from the caller.
+                    unsafe { any_in_instance::<K>(accel, r.prim, ray, t_min) }
+                } else {
+                    shapes[r.shape as usize]
+                        .intersect_prim(r.prim, ray)
+                        .is_some_and(|(t, _)| t > t_min)
+                };
+                if blocked {
                     return true;
                 }
             }
@@ -296,14 +360,14 @@ unsafe fn closest_avx2(
     t_min: f32,
 ) -> Option<PreliminaryHit> {
     // SAFETY: this function is only called when AVX2 is available (see `Accel::intersect_from`).
-    unsafe { closest::<super::simd::Avx2>(accel, shapes, ray, t_min) }
+    unsafe { closest::<super::simd::Avx2, true>(accel, shapes, ray, t_min) }
 }
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
 unsafe fn any_avx2(accel: &Accel, shapes: &[Shape], ray: &Ray, t_min: f32) -> bool {
     // SAFETY: this function is only called when AVX2 is available (see `Accel::occluded_from`).
-    unsafe { any::<super::simd::Avx2>(accel, shapes, ray, t_min) }
+    unsafe { any::<super::simd::Avx2, true>(accel, shapes, ray, t_min) }
 }
 
 impl Accel {
@@ -330,7 +394,7 @@ impl Accel {
             #[cfg(target_arch = "x86_64")]
             Isa::Avx2 => unsafe { closest_avx2(self, shapes, ray, t_min) },
             // SAFETY: the scalar kernel needs no CPU feature.
-            _ => unsafe { closest::<super::simd::Scalar>(self, shapes, ray, t_min) },
+            _ => unsafe { closest::<super::simd::Scalar, true>(self, shapes, ray, t_min) },
         }
     }
 
@@ -351,7 +415,7 @@ impl Accel {
             #[cfg(target_arch = "x86_64")]
             Isa::Avx2 => unsafe { any_avx2(self, shapes, ray, t_min) },
             // SAFETY: the scalar kernel needs no CPU feature.
-            _ => unsafe { any::<super::simd::Scalar>(self, shapes, ray, t_min) },
+            _ => unsafe { any::<super::simd::Scalar, true>(self, shapes, ray, t_min) },
         }
     }
 }

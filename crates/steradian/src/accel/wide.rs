@@ -17,6 +17,7 @@
 
 use glam::Vec3;
 
+use super::instance::Instance;
 use super::sah_build::{self, BinaryNode, BuildPrim};
 use crate::geometry::Aabb;
 use crate::shape::Shape;
@@ -74,6 +75,9 @@ pub(super) struct PrimRef {
     pub shape: u32,
     pub prim: u32,
 }
+
+/// [`PrimRef::shape`] of an instance (its `prim` indexes [`Accel::instances`]).
+pub(super) const INSTANCE_REF: u32 = u32::MAX;
 
 pub(super) const LEAF: u32 = 1 << 31;
 pub(super) const ANALYTIC: u32 = 1 << 30;
@@ -140,6 +144,8 @@ pub struct Accel {
     /// Parallel to `tris`.
     pub(super) tri_ids: Vec<Tri4Ids>,
     pub(super) others: Vec<PrimRef>,
+    /// Instances of shape groups; an entry of `others` with shape [`INSTANCE_REF`] is one.
+    pub(super) instances: Vec<Instance>,
     /// Code of the root (a node, a leaf, or [`EMPTY_CHILD`]).
     pub(super) root: u32,
     pub(super) bounds: Aabb,
@@ -162,6 +168,7 @@ impl Default for Accel {
             tris: Vec::new(),
             tri_ids: Vec::new(),
             others: Vec::new(),
+            instances: Vec::new(),
             root: EMPTY_CHILD,
             bounds: Aabb::EMPTY,
             isa: Isa::detect(),
@@ -176,7 +183,10 @@ pub struct AccelStats {
     pub nodes: usize,
     pub triangle_packets: usize,
     pub triangles: usize,
+    /// Analytic primitives, instances included.
     pub analytic_prims: usize,
+    /// Instances of shape groups (their groups' own hierarchies are not counted here).
+    pub instances: usize,
     /// Bytes of nodes, triangle packets and analytic references.
     pub bytes: usize,
 }
@@ -190,6 +200,12 @@ impl Accel {
 
     /// [`Accel::build`] with a given kernel set (falls back to scalar where the CPU lacks it).
     pub fn build_with_isa(shapes: &[Shape], isa: Isa) -> Accel {
+        Accel::build_with_instances(shapes, Vec::new(), isa)
+    }
+
+    /// The BVH over every primitive of `shapes` and every instance (one primitive each, with
+    /// its world bounds); hits on an instance name it in [`PreliminaryHit::instance`].
+    pub fn build_with_instances(shapes: &[Shape], instances: Vec<Instance>, isa: Isa) -> Accel {
         let isa = if isa.is_supported() { isa } else { Isa::Scalar };
         let mut build: Vec<BuildPrim> = Vec::new();
         for (s, shape) in shapes.iter().enumerate() {
@@ -213,10 +229,20 @@ impl Accel {
                 bp.centroid = bp.bounds.center();
             });
         }
+        for (i, instance) in instances.iter().enumerate() {
+            let bounds = instance.bounds();
+            build.push(BuildPrim {
+                bounds,
+                centroid: bounds.center(),
+                shape: INSTANCE_REF,
+                prim: i as u32,
+                is_triangle: false,
+            });
+        }
         build.retain(|b| {
             !b.bounds.is_empty() && b.bounds.min.is_finite() && b.bounds.max.is_finite()
         });
-        let mut accel = Accel { isa, ..Accel::default() };
+        let mut accel = Accel { isa, instances, ..Accel::default() };
         if build.is_empty() {
             return accel;
         }
@@ -231,6 +257,14 @@ impl Accel {
             + std::mem::size_of_val(accel.tris.as_slice())
             >= PREFETCH_MIN_BYTES;
         accel
+    }
+
+    /// Instance `i` (as a hit names it in [`PreliminaryHit::instance`]).
+    ///
+    /// [`PreliminaryHit::instance`]: crate::geometry::PreliminaryHit::instance
+    #[inline]
+    pub fn instance(&self, i: u32) -> &Instance {
+        &self.instances[i as usize]
     }
 
     /// Bounds of everything in the hierarchy (empty for an empty scene).
@@ -251,6 +285,7 @@ impl Accel {
             triangle_packets: self.tris.len(),
             triangles,
             analytic_prims: self.others.len(),
+            instances: self.instances.len(),
             bytes: self.nodes.len() * std::mem::size_of::<Node8>()
                 + self.tris.len() * (std::mem::size_of::<Tri4>() + std::mem::size_of::<Tri4Ids>())
                 + self.others.len() * std::mem::size_of::<PrimRef>(),

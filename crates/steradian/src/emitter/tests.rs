@@ -25,7 +25,10 @@ fn points_along(shape: &Shape, o: Vec3, w: Vec3) -> Vec<crate::geometry::Surface
         for _ in 0..4 {
             let ray = Ray::infinite(origin, w);
             let Some((t, uv)) = shape.intersect_prim(prim, &ray) else { break };
-            let si = shape.interaction(&ray, &PreliminaryHit { t, uv, shape: 0, prim });
+            let si = shape.interaction(
+                &ray,
+                &PreliminaryHit { t, uv, shape: 0, prim, instance: crate::geometry::NO_INSTANCE },
+            );
             // the next root: restart just past this one
             origin = si.p + w * 1e-4 * (1.0 + si.p.abs().max_element());
             points.push(si);

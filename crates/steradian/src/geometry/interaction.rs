@@ -15,7 +15,14 @@ pub struct PreliminaryHit {
     pub shape: u32,
     /// Index of the primitive inside the shape (triangle index; 0 for analytic shapes).
     pub prim: u32,
+    /// Index of the instance the shape was reached through ([`NO_INSTANCE`] for the scene's
+    /// own shapes); `shape` is then the member's index in the instance's group.
+    pub instance: u32,
 }
+
+/// [`PreliminaryHit::instance`] and [`SurfaceInteraction::instance`] of a shape that is not
+/// instanced.
+pub const NO_INSTANCE: u32 = u32::MAX;
 
 /// A point on a surface with everything shading needs.
 #[derive(Clone, Copy, Debug)]
@@ -45,6 +52,9 @@ pub struct SurfaceInteraction {
     /// Barycentric coordinates (b1, b2) of the hit on triangle `prim` (mesh attributes are
     /// interpolated with them); the shape's own (u, v) for other shapes.
     pub bary: Vec2,
+    /// The instance the shape was reached through, or [`NO_INSTANCE`] (then `shape` indexes
+    /// the scene's shapes; otherwise the instance's group's).
+    pub instance: u32,
 }
 
 /// Offset for spawned rays, relative to the magnitude of the coordinates: floating-point

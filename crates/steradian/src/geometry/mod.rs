@@ -12,7 +12,9 @@ pub mod trig;
 pub use aabb::Aabb;
 pub use frame::Frame;
 pub mod interaction;
-pub use interaction::{offset_ray_origin, PreliminaryHit, SurfaceInteraction, SurfacePoint};
+pub use interaction::{
+    offset_ray_origin, PreliminaryHit, SurfaceInteraction, SurfacePoint, NO_INSTANCE,
+};
 pub use ray::Ray;
 pub use transform::{Transform, TransformError};
 pub use triangle::intersect_triangle;

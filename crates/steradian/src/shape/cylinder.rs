@@ -143,6 +143,7 @@ impl Cylinder {
             shape: hit.shape,
             prim: hit.prim,
             bary: hit.uv,
+            instance: hit.instance,
         }
     }
 

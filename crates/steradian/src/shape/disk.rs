@@ -90,6 +90,7 @@ impl Disk {
             shape: hit.shape,
             prim: hit.prim,
             bary: hit.uv,
+            instance: hit.instance,
         }
     }
 

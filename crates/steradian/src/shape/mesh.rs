@@ -207,6 +207,7 @@ impl Mesh {
         }
     }
 
+    #[inline]
     pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
         let prim = hit.prim;
         let [i0, i1, i2] = self.indices[prim as usize];
@@ -263,6 +264,7 @@ impl Mesh {
             shape: hit.shape,
             prim,
             bary: hit.uv,
+            instance: hit.instance,
         }
     }
 

@@ -167,7 +167,9 @@ impl Shape {
         }
     }
 
-    /// Full surface data at a hit found by [`Shape::intersect_prim`].
+    /// Full surface data at a hit found by [`Shape::intersect_prim`]. Inlined into the
+    /// scene's ray query (one call site in the hot path; instances call it from a cold one).
+    #[inline(always)]
     pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
         match self {
             Shape::Mesh(s) => s.interaction(ray, hit),

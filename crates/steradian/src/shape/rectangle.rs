@@ -131,6 +131,7 @@ impl Rectangle {
             shape: hit.shape,
             prim: hit.prim,
             bary: hit.uv,
+            instance: hit.instance,
         }
     }
 

@@ -159,6 +159,7 @@ impl Sphere {
             shape: hit.shape,
             prim: hit.prim,
             bary: hit.uv,
+            instance: hit.instance,
         }
     }
 

@@ -12,7 +12,10 @@ fn hit(shape: &Shape, ray: &Ray) -> Option<SurfaceInteraction> {
     let (t, prim) = trace(shape, ray)?;
     let (t2, uv) = shape.intersect_prim(prim, ray).unwrap();
     assert_eq!(t, t2);
-    Some(shape.interaction(ray, &PreliminaryHit { t, uv, shape: 0, prim }))
+    Some(shape.interaction(
+        ray,
+        &PreliminaryHit { t, uv, shape: 0, prim, instance: crate::geometry::NO_INSTANCE },
+    ))
 }
 
 fn tr(v: Vec3) -> Transform {

@@ -204,7 +204,7 @@ impl Accel {
     }
 
     /// The BVH over every primitive of `shapes` and every instance (one primitive each, with
-    /// its world bounds); hits on an instance name it in [`PreliminaryHit::instance`].
+    /// its world bounds); hits on an instance name it in [`PreliminaryHit::instance`](crate::geometry::PreliminaryHit::instance).
     pub fn build_with_instances(shapes: &[Shape], instances: Vec<Instance>, isa: Isa) -> Accel {
         let isa = if isa.is_supported() { isa } else { Isa::Scalar };
         let mut build: Vec<BuildPrim> = Vec::new();

@@ -71,7 +71,7 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
         ("texture", "volume"),
         ("bsdf", "hair"),
         ("bsdf", "polarizer"),
-        ("integrator", "ptracer"),
+        ("integrator", "prb"),
         ("integrator", "volpath"),
     ] {
         let e = err(&scene(&format!("<{tag} type=\"{ty}\"/>")));

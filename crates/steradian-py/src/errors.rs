@@ -39,6 +39,7 @@ pub fn render_error(e: RenderError) -> PyErr {
         | RenderError::BadSensor(_)
         | RenderError::NotACamera
         | RenderError::NotLight
+        | RenderError::ParticlesNeedPinhole
         | RenderError::BadOption { .. } => PyValueError::new_err(e.to_string()),
     }
 }

@@ -234,6 +234,28 @@ impl Scene {
         Some((e, &self.emitters[e as usize]))
     }
 
+    /// Picks an emitter by the light-selection distribution: its index and probability
+    /// (`None` without emitters).
+    #[inline]
+    pub fn pick_emitter(&self, u: f32) -> Option<(u32, f32)> {
+        let count = self.emitters.len();
+        if count == 0 {
+            return None;
+        }
+        let index = self.light_cdf.partition_point(|&c| c <= u).min(count - 1);
+        Some((index as u32, self.light_pmf[index]))
+    }
+
+    /// The sphere around the scene's bounds (centre, radius, m); radius 1 for an empty scene.
+    pub fn bounding_sphere(&self) -> (Vec3, f32) {
+        let b = self.bounds();
+        if b.is_empty() {
+            return (Vec3::ZERO, 1.0);
+        }
+        let center = b.center();
+        (center, ((b.max - center).length()).max(1e-3))
+    }
+
     /// Probability of choosing emitter `e` for next-event estimation (see [`LightSelection`]).
     #[inline]
     pub fn emitter_selection_pdf(&self, e: u32) -> f32 {

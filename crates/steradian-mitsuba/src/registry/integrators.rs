@@ -1,4 +1,4 @@
-//! Integrator plugins: `path`, `direct`, `depth`, `moment`, `aov`.
+//! Integrator plugins: `path`, `direct`, `depth`, `moment`, `aov`, `ptracer`.
 
 use steradian::emitter::LightSelection;
 use steradian::integrator::{
@@ -7,7 +7,7 @@ use steradian::integrator::{
 };
 use steradian::integrator::{
     AovField, AovIntegrator, DepthIntegrator, DirectIntegrator, Integrator, MomentIntegrator,
-    PathTracer,
+    ParticleTracer, PathTracer,
 };
 
 use super::{at_param, lookup, Plugins};
@@ -50,8 +50,36 @@ fn light_selection(node: &PluginNode) -> Result<LightSelection, LoadError> {
 type BuildIntegrator = fn(&PluginNode) -> Result<Integrator, LoadError>;
 
 /// Every integrator plugin, by Mitsuba `type`.
-pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> =
-    &[("path", path), ("direct", direct), ("depth", depth), ("moment", moment), ("aov", aov)];
+pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> = &[
+    ("path", path),
+    ("direct", direct),
+    ("depth", depth),
+    ("moment", moment),
+    ("aov", aov),
+    ("ptracer", ptracer),
+];
+
+/// `ptracer` (see `steradian::integrator::ParticleTracer`): `max_depth`, `rr_depth`,
+/// `hide_emitters`; `samples_per_pass` is accepted (steradian renders pass by pass anyway).
+fn ptracer(node: &PluginNode) -> Result<Integrator, LoadError> {
+    let p = &node.props;
+    let max_depth = match p.get_int("max_depth")? {
+        None => None,
+        Some(v) => parse_max_depth(v).map_err(at_param(node))?,
+    };
+    let rr_depth = count(node, "rr_depth", ParticleTracer::DEFAULT_RR_DEPTH as i64)?;
+    let hide_emitters =
+        p.get_bool("hide_emitters")?.unwrap_or(ParticleTracer::DEFAULT_HIDE_EMITTERS);
+    if let Some(n) = p.get_int("samples_per_pass")? {
+        if n < 1 {
+            return Err(LoadError::at(
+                p.position("samples_per_pass").unwrap_or(&node.pos),
+                format!("{}: 'samples_per_pass' must be at least 1, got {n}", node.desc()),
+            ));
+        }
+    }
+    Ok(Integrator::ParticleTracer(ParticleTracer { max_depth, rr_depth, hide_emitters }))
+}
 
 pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
     let integrator = lookup(INTEGRATORS, node)?(node)?;
@@ -141,6 +169,16 @@ fn nested_integrators(
             return Err(LoadError::at(
                 c.pos(),
                 format!("{} cannot nest another {}", node.desc(), c.node.desc()),
+            ));
+        }
+        if c.node.plugin_type == "ptracer" {
+            return Err(LoadError::at(
+                c.pos(),
+                format!(
+                    "{} cannot nest {}: particle tracing splats over the whole film, not per camera sample (Mitsuba refuses it too)",
+                    node.desc(),
+                    c.node.desc()
+                ),
             ));
         }
         let mut integrator = build(&c.node)?;

@@ -145,7 +145,6 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     (
         "integrator",
         &[
-            "ptracer",
             "stokes",
             "volpath",
             "volpathmis",
@@ -299,6 +298,20 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
             "the scene has no <integrator> (Mitsuba 3 gives none by default; add e.g. <integrator type=\"path\"/>)",
         ));
     };
+    if matches!(integrator, steradian::integrator::Integrator::ParticleTracer(_)) {
+        if let Some(p) = b
+            .desc
+            .emitters
+            .iter()
+            .position(|e| matches!(e, steradian::emitter::Emitter::Projector(_)))
+        {
+            let pos = integrator_pos.clone().unwrap_or_else(|| root.pos.clone());
+            return Err(LoadError::at(
+                &pos,
+                format!("<integrator type=\"ptracer\">: cannot start light paths on the scene's projector (emitter {p}); steradian's particle tracer has no emission sampling for it: use `path`"),
+            ));
+        }
+    }
     b.desc.light_selection = integrator.light_selection();
     let scene = Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))?;
     let warnings = b.warnings.into_inner().iter().map(ToString::to_string).collect();

@@ -18,6 +18,7 @@
 mod area;
 mod constant;
 mod directional;
+mod emission;
 mod envmap;
 mod light_selection;
 mod point;
@@ -27,6 +28,7 @@ mod spot;
 pub use area::AreaLight;
 pub use constant::ConstantEnvironment;
 pub use directional::DirectionalLight;
+pub use emission::EmittedRay;
 pub use envmap::EnvironmentMap;
 pub use light_selection::LightSelection;
 pub use point::PointLight;

@@ -28,6 +28,7 @@ use glam::UVec2;
 use super::filter::ReconstructionFilter;
 use super::image::Image;
 use super::image_block::{ImageBlock, PixelAccum};
+use super::splat_block::SplatBlock;
 
 /// Largest accepted width or height, in pixels.
 pub const MAX_FILM_SIZE: u32 = 1 << 15;
@@ -205,6 +206,17 @@ impl Film {
                 }
             }
         }
+    }
+
+    /// Adds one pass of particle tracing: each pixel's splat sum `values[i]` (row-major, one
+    /// per pixel) as one sample of weight 1, so the developed image is the mean over passes
+    /// and the standard error is that of the passes, which are independent.
+    pub fn add_pass(&mut self, block: &SplatBlock) {
+        debug_assert_eq!(block.sums().len(), self.data.len());
+        for (p, v) in self.data.iter_mut().zip(block.sums()) {
+            p.add_sample(1.0, *v);
+        }
+        self.dropped += block.dropped();
     }
 
     /// Adds another film's sums (e.g. another pass or machine). Errors if the sizes differ.

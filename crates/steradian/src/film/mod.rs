@@ -8,6 +8,7 @@ mod hdrfilm;
 mod image;
 mod image_block;
 pub mod png;
+mod splat_block;
 mod ztest;
 
 pub use self::exr::{
@@ -23,4 +24,5 @@ pub use filter::{
 pub use hdrfilm::{AovLayer, ComponentFormat, Film, MAX_FILM_SIZE};
 pub use image::{mse, rel_mse, Image};
 pub use image_block::{ImageBlock, PixelAccum};
+pub use splat_block::SplatBlock;
 pub use ztest::{erfc, z_test, ZTest, ZTEST_ALPHA, ZTEST_MIN_VARIANCE, ZTEST_PASS_FRACTION};

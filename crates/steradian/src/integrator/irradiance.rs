@@ -42,8 +42,8 @@ fn reflected_only(integrator: &Integrator) -> Option<Integrator> {
             d.emitters = EmitterVisibility::Hidden;
             Some(Integrator::Direct(d))
         }
-        // refused by the render plan (Integrator::estimates_light)
-        Integrator::Depth(_) => None,
+        // refused by the render plan (Integrator::estimates_light, particle tracing)
+        Integrator::Depth(_) | Integrator::ParticleTracer(_) => None,
         Integrator::Moment(super::MomentIntegrator { nested })
         | Integrator::Aov(super::AovIntegrator { nested, .. }) => {
             nested.first().and_then(|(_, i)| reflected_only(i))

@@ -10,6 +10,7 @@ mod irradiance;
 mod mis;
 mod moment;
 mod path;
+mod ptracer;
 
 pub use aov::{AovField, AovIntegrator};
 pub use branching::{pilot, Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
@@ -22,6 +23,7 @@ pub use path::{
     PathTracer, DEFAULT_BRANCHES, DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
     MAX_BRANCHES,
 };
+pub use ptracer::ParticleTracer;
 
 use crate::emitter::LightSelection;
 use crate::geometry::Ray;
@@ -37,6 +39,8 @@ pub enum Integrator {
     Depth(DepthIntegrator),
     Moment(MomentIntegrator),
     Aov(AovIntegrator),
+    /// `ptracer`: rendered by the render driver's particle passes, not through `li`.
+    ParticleTracer(ParticleTracer),
 }
 
 impl Integrator {
@@ -45,7 +49,7 @@ impl Integrator {
         match self {
             Integrator::Path(p) => p.light_selection,
             Integrator::Direct(d) => d.light_selection,
-            Integrator::Depth(_) => LightSelection::default(),
+            Integrator::Depth(_) | Integrator::ParticleTracer(_) => LightSelection::default(),
             Integrator::Moment(MomentIntegrator { nested })
             | Integrator::Aov(AovIntegrator { nested, .. }) => {
                 nested.first().map_or(LightSelection::default(), |(_, i)| i.light_selection())
@@ -61,6 +65,8 @@ impl Integrator {
             Integrator::Path(i) => i.li(scene, ray, sampler),
             Integrator::Direct(i) => i.li(scene, ray, sampler),
             Integrator::Depth(i) => i.li(scene, ray),
+            // camera rays carry nothing in particle tracing (the render plan never asks)
+            Integrator::ParticleTracer(_) => Spectrum::ZERO,
             Integrator::Moment(MomentIntegrator { nested })
             | Integrator::Aov(AovIntegrator { nested, .. }) => {
                 nested.first().map_or(Spectrum::ZERO, |(_, i)| i.li(scene, ray, sampler))

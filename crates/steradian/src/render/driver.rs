@@ -26,6 +26,11 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         .build()
         .map_err(|e| RenderError::ThreadPool(e.to_string()))?;
 
+    if let Integrator::ParticleTracer(tracer) = &job.integrator {
+        let threads = pool.current_num_threads();
+        return Ok(super::particles::render_particles(job, tracer, plan, opts, threads));
+    }
+
     // `path` with `branches` unset: a pilot picks the count (integrator/branching.rs). Surface
     // maps estimate irradiance, whose paths keep the default count: no pilot for them.
     let mut pilot_run = None;
@@ -91,7 +96,8 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
             Integrator::Direct(_)
             | Integrator::Depth(_)
             | Integrator::Moment(_)
-            | Integrator::Aov(_) => None,
+            | Integrator::Aov(_)
+            | Integrator::ParticleTracer(_) => None,
         },
         pilot: pilot_run,
         spp: spp_done,

@@ -8,13 +8,15 @@
 //! are rendered on all cores (`block.rs`) and merged into the film in a fixed order
 //! (`merge.rs`); every sample's random numbers are addressed by (pixel, sample index, seed), so
 //! the image is bit-for-bit the same for any thread count. `driver.rs` ties these together;
-//! `measure.rs` reduces a film to one reading.
+//! `measure.rs` reduces a film to one reading. The particle tracer renders whole-film passes of
+//! light paths instead (`particles.rs`), with the same guarantees.
 
 mod block;
 mod driver;
 mod measure;
 mod merge;
 mod options;
+mod particles;
 mod schedule;
 
 pub use block::MAX_AOV_LAYERS;

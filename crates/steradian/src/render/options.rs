@@ -150,6 +150,8 @@ pub enum RenderError {
     NotACamera,
     /// Meters and irradiance maps need an integrator that estimates light (not `depth`).
     NotLight,
+    /// The particle tracer renders images through a pinhole (`perspective`) camera only.
+    ParticlesNeedPinhole,
     /// An option out of its range: the option's name and what it must be.
     BadOption {
         option: &'static str,
@@ -170,6 +172,10 @@ impl fmt::Display for RenderError {
             RenderError::NotLight => write!(
                 f,
                 "the depth integrator gives distances (m), not light: meters and irradiance maps need `path` or `direct`"
+            ),
+            RenderError::ParticlesNeedPinhole => write!(
+                f,
+                "the ptracer integrator renders images through a perspective camera only (no thinlens, orthographic, batch or meters, no irradiance maps): use `path` for those"
             ),
             RenderError::BadOption { option, reason } => write!(f, "{option} {reason}"),
             RenderError::ThreadPool(e) => write!(f, "could not start worker threads: {e}"),
@@ -210,6 +216,11 @@ impl<'a> Plan<'a> {
         }
         if (opts.quantity.is_surface_map() || meter) && !job.integrator.estimates_light() {
             return Err(RenderError::NotLight);
+        }
+        if matches!(job.integrator, crate::integrator::Integrator::ParticleTracer(_))
+            && (opts.quantity.is_surface_map() || !sensor.connects_particles())
+        {
+            return Err(RenderError::ParticlesNeedPinhole);
         }
         let mut sampler = sensor.sampler;
         if let Some(spp) = opts.spp {

@@ -15,7 +15,7 @@ pub use distant::{Distant, DistantTarget};
 pub use fov::{FieldOfView, FovAxis};
 pub use irradiancemeter::IrradianceMeter;
 pub use orthographic::Orthographic;
-pub use perspective::Perspective;
+pub use perspective::{Perspective, SensorConnection};
 pub use radiancemeter::RadianceMeter;
 pub use thinlens::ThinLens;
 
@@ -95,6 +95,39 @@ impl Sensor {
         if let SensorKind::Distant(d) = &mut self.kind {
             d.set_scene(bounds);
         }
+    }
+
+    /// The connection from world point `p` to the camera for particle tracing (Mitsuba's
+    /// `sample_direction`); only the pinhole camera has one (`None` otherwise and outside its
+    /// view).
+    #[inline]
+    pub fn sample_direction(&self, p: glam::Vec3) -> Option<SensorConnection> {
+        match &self.kind {
+            SensorKind::Perspective(c) => c.sample_direction(p),
+            _ => None,
+        }
+    }
+
+    /// [`Sensor::sample_direction`] for light arriving from direction `wi` at infinity.
+    #[inline]
+    pub fn sample_direction_at_infinity(&self, wi: glam::Vec3) -> Option<SensorConnection> {
+        match &self.kind {
+            SensorKind::Perspective(c) => c.sample_direction_at_infinity(wi),
+            _ => None,
+        }
+    }
+
+    /// The pinhole of a camera particle tracing connects to (`None` for other sensors).
+    pub fn pinhole(&self) -> Option<glam::Vec3> {
+        match &self.kind {
+            SensorKind::Perspective(c) => Some(c.to_world.point(glam::Vec3::ZERO)),
+            _ => None,
+        }
+    }
+
+    /// Whether particle tracing can connect to this sensor (see [`Sensor::sample_direction`]).
+    pub fn connects_particles(&self) -> bool {
+        matches!(self.kind, SensorKind::Perspective(_))
     }
 
     /// What the sensor measures.

@@ -15,6 +15,15 @@
 //! −x, since Mitsuba's local +x points left) and image y downwards. For a film position
 //! (sx, sy) ∈ [0,1]², the ray direction in camera space is proportional to
 //! ((1 − 2sx)·tan(fov_x/2), (1 − 2sy)·tan(fov_x/2)/aspect, 1).
+//!
+//! ## Importance (for particle tracing)
+//!
+//! The camera's importance is normalised over the film: with A = 4·tan(fov_x/2)·tan(fov_y/2)
+//! the area of the image rectangle at unit distance, a direction at angle θ from the optical
+//! axis has W(θ) = 1/(A·cos⁴θ) per unit area of the pinhole and solid angle, so that
+//! ∫ W cos θ dω = 1 over the image. Connecting a point at distance r to the pinhole gives the
+//! factor W·cos θ/r² = 1/(A·cos³θ·r²) ([`Perspective::sample_direction`]); a light path's
+//! splat of that weight, scaled by 1/spp, makes each pixel the mean radiance it sees.
 
 use glam::{Vec2, Vec3};
 
@@ -96,6 +105,68 @@ impl Perspective {
     }
 }
 
+/// A connection from a point to the camera (particle tracing).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SensorConnection {
+    /// The camera's position (the pinhole), m.
+    pub position: Vec3,
+    /// Unit direction from the point towards the camera.
+    pub wi: Vec3,
+    /// Distance to the camera, m.
+    pub dist: f32,
+    /// Film position in [0, 1]² of the ray through the point.
+    pub film_uv: Vec2,
+    /// W·cos θ / r² (1/(m²·sr) per unit area, see the module documentation); for a point at
+    /// infinity ([`Perspective::sample_direction_at_infinity`]) W·cos θ, without the 1/r².
+    pub weight: f32,
+}
+
+impl Perspective {
+    /// The film position and importance factor of the camera ray towards camera-space
+    /// direction `local` (any length); `None` outside the field of view.
+    #[inline]
+    fn importance(&self, local: Vec3) -> Option<(Vec2, f32)> {
+        if !is_positive(local.z) {
+            return None;
+        }
+        let (px, py) = (local.x / local.z, local.y / local.z);
+        let film_uv =
+            Vec2::new(0.5 * (1.0 - px / self.tan_half.x), 0.5 * (1.0 - py / self.tan_half.y));
+        if !(film_uv.cmpge(Vec2::ZERO).all() && film_uv.cmple(Vec2::ONE).all()) {
+            return None;
+        }
+        let cos_theta = local.z / local.length();
+        let area = 4.0 * self.tan_half.x * self.tan_half.y;
+        Some((film_uv, 1.0 / (area * cos_theta * cos_theta * cos_theta)))
+    }
+
+    /// The connection from world point `p` to the pinhole; `None` when `p` is outside the
+    /// field of view or the clip range (depth along the axis in [near_clip, far_clip]).
+    #[inline]
+    pub fn sample_direction(&self, p: Vec3) -> Option<SensorConnection> {
+        let position = self.to_world.point(Vec3::ZERO);
+        let local = self.to_world.inverse().point(p);
+        if !(local.z >= self.near_clip && local.z <= self.far_clip) {
+            return None;
+        }
+        let (film_uv, w) = self.importance(local)?;
+        let d = position - p;
+        let dist2 = d.length_squared();
+        let dist = dist2.sqrt();
+        Some(SensorConnection { position, wi: d / dist, dist, film_uv, weight: w / dist2 })
+    }
+
+    /// The camera ray's film position and importance for light arriving from world
+    /// direction `wi` (towards the light, from the pinhole), for lights at infinity.
+    #[inline]
+    pub fn sample_direction_at_infinity(&self, wi: Vec3) -> Option<SensorConnection> {
+        let position = self.to_world.point(Vec3::ZERO);
+        let local = self.to_world.inverse().vector(wi);
+        let (film_uv, weight) = self.importance(local)?;
+        Some(SensorConnection { position, wi: -wi, dist: f32::INFINITY, film_uv, weight })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -141,6 +212,39 @@ mod tests {
         let r = c.sample_ray(Vec2::new(sx, sy));
         let to_p = (p - r.o).normalize();
         assert!((to_p - r.d).length() < 1e-5);
+    }
+
+    /// The importance integrates to 1 over the image: ∫ W cos θ dω = 1, by Monte Carlo over
+    /// directions uniform on the sphere (4π·mean of W·cos θ where the camera sees them), within
+    /// 4 standard errors; and a point connects to the film position whose ray reaches it.
+    #[test]
+    fn importance_is_normalised_over_the_film() {
+        let c = camera();
+        let mut rng = crate::sampling::Pcg32::new(3, 7);
+        let n = 400_000;
+        let (mut sum, mut sum2) = (0.0f64, 0.0f64);
+        for _ in 0..n {
+            let d = crate::sampling::warp::square_to_uniform_sphere(Vec2::new(
+                rng.next_f32(),
+                rng.next_f32(),
+            ));
+            let v = c.sample_direction_at_infinity(d).map_or(0.0, |s| s.weight as f64)
+                * 4.0
+                * std::f64::consts::PI;
+            // W·cos θ at infinity is the factor without 1/r²: ∫ over the sphere of directions
+            sum += v;
+            sum2 += v * v;
+        }
+        let mean = sum / n as f64;
+        let se = ((sum2 / n as f64 - mean * mean) / n as f64).sqrt();
+        assert!((mean - 1.0).abs() < 4.0 * se, "{mean} ± {se}");
+        let p = Vec3::new(0.3, -0.2, 0.5);
+        let s = c.sample_direction(p).unwrap();
+        let r = c.sample_ray(s.film_uv);
+        assert!((r.d + s.wi).length() < 1e-5, "{:?} vs {:?}", r.d, s.wi);
+        assert!((s.dist - (p - s.position).length()).abs() < 1e-5);
+        // behind the camera: no connection
+        assert!(c.sample_direction(Vec3::new(0.0, 0.0, 5.0)).is_none());
     }
 
     #[test]

@@ -1,0 +1,227 @@
+//! # `ptracer`: particle tracing (light tracing)
+//!
+//! Mitsuba plugin `ptracer`.
+//!
+//! | Parameter | Type | Default | Meaning |
+//! |---|---|---|---|
+//! | `max_depth` | integer | −1 (∞) | longest path, in segments: 1 renders only the lights seen directly |
+//! | `rr_depth` | integer | 5 | depth after which Russian roulette may end a path |
+//! | `hide_emitters` | bool | false | leave out the lights seen directly |
+//! | `samples_per_pass` | integer | — | accepted; steradian always renders pass by pass |
+//!
+//! Paths start on the lights and connect to the camera at every surface they reach, as in
+//! Mitsuba 3: a film of W × H pixels at N samples per pixel traces N·W·H light paths (one pass
+//! of W·H paths per sample), each
+//! 1. connecting a point sampled on an extended light (area lights by area; lights at infinity
+//!    by their direction sampling from the camera) straight to the camera, unless
+//!    `hide_emitters` or `max_depth` = 0: Le·cos θ_light/pdf · W·cos θ_cam/r² (delta lights
+//!    cannot be seen);
+//! 2. starting a ray from a light chosen by the scene's light selection
+//!    ([`Emitter::sample_ray`], weight Φ-density ratio / selection probability) and, at every
+//!    surface point reached (while the depth is below `max_depth`), splatting
+//!    β·f(x, ω_cam, ω_light)·|cos θ_cam|·W·cos θ/r², visibility tested, before sampling the BSDF
+//!    for the next direction with the importance-transport weight (the adjoint shading-normal
+//!    correction of Veach's thesis, §5.3, and no (η_i/η_t)² radiance factor at refractions);
+//!    Russian roulette after `rr_depth` with q = min(max(β)·η², 0.95).
+//!
+//! Every splat is scaled by 1/spp and spread with the film's filter normalised over its
+//! footprint, so a pixel is the mean radiance through it, in W/(m²·sr), like the `path`
+//! integrator's image of the same scene (and Mitsuba's `ptracer`'s).
+//!
+//! Where steradian differs on purpose: only the pinhole `perspective` camera can be connected
+//! to (the loader refuses others with `ptracer`, as it refuses `projector` lights and media);
+//! light selection follows the integrator's default `light_selection` (Mitsuba picks lights
+//! uniformly; either is unbiased). The standard error of each pixel comes from the spread of
+//! its per-pass sums, the passes being independent.
+
+use glam::Vec2;
+
+use crate::bsdf::ShadingPoint;
+use crate::emitter::{Emitter, EmitterSample, Support};
+use crate::film::SplatBlock;
+use crate::geometry::{Ray, SurfaceInteraction};
+use crate::sampling::PixelSampler;
+use crate::scene::Scene;
+use crate::sensor::{Sensor, SensorConnection};
+use crate::Spectrum;
+
+/// Mitsuba's particle tracer.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ParticleTracer {
+    /// Longest path in segments; `None` for no limit (Mitsuba's −1).
+    pub max_depth: Option<u32>,
+    /// Depth after which Russian roulette applies.
+    pub rr_depth: u32,
+    /// Whether lights seen directly are left out.
+    pub hide_emitters: bool,
+}
+
+impl Default for ParticleTracer {
+    fn default() -> Self {
+        ParticleTracer {
+            max_depth: None,
+            rr_depth: Self::DEFAULT_RR_DEPTH,
+            hide_emitters: Self::DEFAULT_HIDE_EMITTERS,
+        }
+    }
+}
+
+/// Mitsuba's limit on the probability of continuing a path under Russian roulette.
+const RR_MAX_CONTINUE: f32 = 0.95;
+
+impl ParticleTracer {
+    /// Default `rr_depth` (Mitsuba's).
+    pub const DEFAULT_RR_DEPTH: u32 = 5;
+    /// Default `hide_emitters` (Mitsuba's).
+    pub const DEFAULT_HIDE_EMITTERS: bool = false;
+
+    /// Whether a path may still connect at `depth` (segments so far).
+    #[inline]
+    fn below_max(&self, depth: u32) -> bool {
+        self.max_depth.is_none_or(|m| depth < m)
+    }
+
+    /// Traces one light path with sampler `s`, splatting `scale` times its contributions to
+    /// the camera into `block`.
+    pub fn trace(
+        &self,
+        scene: &Scene,
+        sensor: &Sensor,
+        s: &mut PixelSampler,
+        scale: f32,
+        block: &mut SplatBlock,
+    ) {
+        let size = Vec2::new(block.width() as f32, block.height() as f32);
+        let mut splat = |c: &SensorConnection, value: Spectrum| {
+            if value != Spectrum::ZERO {
+                block.splat(c.film_uv * size, value * scale);
+            }
+        };
+        if self.max_depth != Some(0) && !self.hide_emitters {
+            self.visible_emitter(scene, sensor, s, &mut splat);
+        }
+        let Some((index, pmf)) = scene.pick_emitter(s.next_1d()) else { return };
+        let (u_dir, u_pos) = (s.next_2d(), s.next_2d());
+        let emitter = &scene.emitters[index as usize];
+        let Some(emitted) =
+            emitter.sample_ray(&scene.shapes, scene.bounding_sphere(), u_pos, u_dir)
+        else {
+            return;
+        };
+        let mut beta = emitted.weight / pmf;
+        let mut eta = 1.0f32;
+        let mut ray = emitted.ray;
+        let mut depth = 1u32;
+        while self.below_max(depth) {
+            let Some(si) = scene.intersect(&ray) else { return };
+            let bsdf = scene.bsdf(&si);
+            let sp = ShadingPoint::new(&si);
+            // towards the light the particle came from, local and world
+            let w_light = si.wo;
+            let wl = si.to_local(w_light);
+            let ng_light = si.n.dot(w_light);
+            if let Some(c) = sensor.sample_direction(si.p) {
+                let wc = si.to_local(c.wi);
+                let ng_cam = si.n.dot(c.wi);
+                // no light through shading normals' wrong side (Mitsuba's test)
+                if ng_light * wl.z > 0.0 && ng_cam * wc.z > 0.0 {
+                    let correction = ((wl.z * ng_cam) / (wc.z * ng_light)).abs();
+                    let f = bsdf.eval(&sp, wc, wl) * (wc.z.abs() * correction * c.weight);
+                    if f != Spectrum::ZERO && visible(scene, &si, &c) {
+                        splat(&c, beta * f);
+                    }
+                }
+            }
+            let Some(bs) = bsdf.sample(&sp, wl, s.next_1d(), s.next_2d()) else { return };
+            let d = si.to_world(bs.wi);
+            let ng_next = si.n.dot(d);
+            if !(ng_light * wl.z > 0.0 && ng_next * bs.wi.z > 0.0) {
+                return;
+            }
+            let correction = ((wl.z * ng_next) / (bs.wi.z * ng_light)).abs();
+            // importance transport: no (η_i/η_t)² radiance factor at a refraction
+            beta *= bs.weight * (correction * bs.eta * bs.eta);
+            eta *= bs.eta;
+            if beta == Spectrum::ZERO {
+                return;
+            }
+            if !beta.is_finite() {
+                block.count_dropped();
+                return;
+            }
+            ray = si.spawn_ray(d);
+            depth += 1;
+            if depth > self.rr_depth {
+                let q = (beta.max_element() * eta * eta).min(RR_MAX_CONTINUE);
+                if s.next_1d() >= q {
+                    return;
+                }
+                beta /= q;
+            }
+        }
+    }
+
+    /// Connects a point sampled on an extended light straight to the camera.
+    fn visible_emitter(
+        &self,
+        scene: &Scene,
+        sensor: &Sensor,
+        s: &mut PixelSampler,
+        splat: &mut impl FnMut(&SensorConnection, Spectrum),
+    ) {
+        let Some((index, pmf)) = scene.pick_emitter(s.next_1d()) else { return };
+        let u = s.next_2d();
+        let emitter = &scene.emitters[index as usize];
+        if emitter.support() == Support::Delta {
+            return;
+        }
+        match emitter {
+            Emitter::Area(e) => {
+                let ps = scene.shapes[e.shape as usize].sample_position(u);
+                if !crate::geometry::is_positive(ps.pdf_area) {
+                    return;
+                }
+                let Some(c) = sensor.sample_direction(ps.p) else { return };
+                let cos = ps.n.dot(c.wi);
+                let le = e.radiance(c.wi, ps.n, ps.uv);
+                if cos <= 0.0 || le == Spectrum::ZERO {
+                    return;
+                }
+                let es = EmitterSample {
+                    wi: c.wi,
+                    dist: c.dist,
+                    pdf: 1.0,
+                    weight: Spectrum::ZERO,
+                    support: Support::Delta,
+                };
+                if scene.unoccluded(ps.p, ps.n, &es) {
+                    splat(&c, le * (cos * c.weight / (ps.pdf_area * pmf)));
+                }
+            }
+            // lights at infinity: a direction sampled from the camera
+            _ => {
+                let Some(origin) = sensor.pinhole() else { return };
+                let Some(es) = emitter.sample_direction(&scene.shapes, origin, u) else {
+                    return;
+                };
+                let Some(c) = sensor.sample_direction_at_infinity(es.wi) else { return };
+                if es.pdf > 0.0 && !scene.occluded(&Ray::infinite(origin, es.wi)) {
+                    splat(&c, es.weight * (c.weight / pmf));
+                }
+            }
+        }
+    }
+}
+
+/// Whether nothing lies between surface point `si` and the camera of connection `c`.
+#[inline]
+fn visible(scene: &Scene, si: &SurfaceInteraction, c: &SensorConnection) -> bool {
+    let es = EmitterSample {
+        wi: c.wi,
+        dist: c.dist,
+        pdf: 1.0,
+        weight: Spectrum::ZERO,
+        support: Support::Delta,
+    };
+    scene.unoccluded(si.p, si.n, &es)
+}

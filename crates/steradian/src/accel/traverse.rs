@@ -241,9 +241,10 @@ pub(super) unsafe fn closest<K: Kernel, const INSTANCES: bool>(
 }
 
 /// The closest hit on instance `i` of `accel` with `t_min < t < ray.t_max` (world distances),
-/// traced through its group's hierarchy with the same kernels. A separate function (the
-/// group's traversal is the `INSTANCES = false` copy, which has no instances to visit), so
-/// that the top-level traversal is not recursive and stays inlined in its callers.
+/// traced through its group's hierarchy with the same kernels: the `INSTANCES = false` copy of
+/// the traversal, which has no instances to visit, so the top level is not recursive (a
+/// recursive traversal is not inlined into the scene's ray queries). Out of line, so that the
+/// top level's code stays the size it was before instancing.
 ///
 /// # Safety
 /// The CPU supports the instruction set of `K`.
@@ -353,6 +354,7 @@ pub(super) unsafe fn any<K: Kernel, const INSTANCES: bool>(
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
+#[inline]
 unsafe fn closest_avx2(
     accel: &Accel,
     shapes: &[Shape],
@@ -365,9 +367,31 @@ unsafe fn closest_avx2(
 
 #[cfg(target_arch = "x86_64")]
 #[target_feature(enable = "avx2")]
+#[inline]
 unsafe fn any_avx2(accel: &Accel, shapes: &[Shape], ray: &Ray, t_min: f32) -> bool {
     // SAFETY: this function is only called when AVX2 is available (see `Accel::occluded_from`).
     unsafe { any::<super::simd::Avx2, true>(accel, shapes, ray, t_min) }
+}
+
+/// The portable kernels, out of line: the dispatch in [`Accel::intersect_from`] and
+/// [`Accel::occluded_from`] stays small enough for the AVX2 traversal to be inlined into the
+/// scene's ray queries.
+#[inline(never)]
+fn closest_scalar(
+    accel: &Accel,
+    shapes: &[Shape],
+    ray: &Ray,
+    t_min: f32,
+) -> Option<PreliminaryHit> {
+    // SAFETY: the scalar kernel needs no CPU feature.
+    unsafe { closest::<super::simd::Scalar, true>(accel, shapes, ray, t_min) }
+}
+
+/// See [`closest_scalar`].
+#[inline(never)]
+fn any_scalar(accel: &Accel, shapes: &[Shape], ray: &Ray, t_min: f32) -> bool {
+    // SAFETY: the scalar kernel needs no CPU feature.
+    unsafe { any::<super::simd::Scalar, true>(accel, shapes, ray, t_min) }
 }
 
 impl Accel {
@@ -394,7 +418,7 @@ impl Accel {
             #[cfg(target_arch = "x86_64")]
             Isa::Avx2 => unsafe { closest_avx2(self, shapes, ray, t_min) },
             // SAFETY: the scalar kernel needs no CPU feature.
-            _ => unsafe { closest::<super::simd::Scalar, true>(self, shapes, ray, t_min) },
+            _ => closest_scalar(self, shapes, ray, t_min),
         }
     }
 
@@ -415,7 +439,7 @@ impl Accel {
             #[cfg(target_arch = "x86_64")]
             Isa::Avx2 => unsafe { any_avx2(self, shapes, ray, t_min) },
             // SAFETY: the scalar kernel needs no CPU feature.
-            _ => unsafe { any::<super::simd::Scalar, true>(self, shapes, ray, t_min) },
+            _ => any_scalar(self, shapes, ray, t_min),
         }
     }
 }

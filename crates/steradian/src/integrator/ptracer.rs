@@ -39,7 +39,7 @@ use glam::Vec2;
 use crate::bsdf::ShadingPoint;
 use crate::emitter::{Emitter, EmitterSample, Support};
 use crate::film::SplatBlock;
-use crate::geometry::{Ray, SurfaceInteraction};
+use crate::geometry::SurfaceInteraction;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
 use crate::sensor::{Sensor, SensorConnection};
@@ -205,7 +205,8 @@ impl ParticleTracer {
                     return;
                 };
                 let Some(c) = sensor.sample_direction_at_infinity(es.wi) else { return };
-                if es.pdf > 0.0 && !scene.occluded(&Ray::infinite(origin, es.wi)) {
+                // the pinhole is no surface: the shadow ray leaves it along its own direction
+                if es.pdf > 0.0 && scene.unoccluded(origin, es.wi, &es) {
                     splat(&c, es.weight * (c.weight / pmf));
                 }
             }

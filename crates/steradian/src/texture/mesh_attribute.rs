@@ -139,8 +139,10 @@ impl MeshAttribute {
         }
     }
 
-    /// The value at `p`: interpolated (vertex) or constant (face), times `scale`.
-    #[inline]
+    /// The value at `p`: interpolated (vertex) or constant (face), times `scale`. Out of line:
+    /// inlined, it made [`Texture::eval`](super::Texture::eval) too large to inline into the
+    /// BSDFs of scenes without mesh attributes.
+    #[inline(never)]
     pub fn eval(&self, p: TexturePoint) -> Spectrum {
         let value = match self.scope {
             AttributeScope::Face => self.element(p.prim as usize),
@@ -162,7 +164,7 @@ impl MeshAttribute {
 
     /// One number: the (only) channel. Three-channel attributes are refused by the loader
     /// for scalar parameters, as Mitsuba refuses them; should one get here, its mean channel.
-    #[inline]
+    #[inline(never)]
     pub fn eval_1(&self, p: TexturePoint) -> f32 {
         let v = self.eval(p);
         if self.channels == 1 {

@@ -207,7 +207,7 @@ impl Mesh {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
         let prim = hit.prim;
         let [i0, i1, i2] = self.indices[prim as usize];

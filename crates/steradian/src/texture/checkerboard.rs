@@ -44,7 +44,9 @@ impl Checkerboard {
         (f.x > 0.5) == (f.y > 0.5)
     }
 
-    #[inline]
+    /// The colour at `p`. Out of line: it evaluates nested textures, and `Texture::eval` is
+    /// always inlined.
+    #[inline(never)]
     pub fn eval(&self, p: TexturePoint) -> Spectrum {
         if self.first(p.uv) {
             self.color0.eval(p)
@@ -53,8 +55,8 @@ impl Checkerboard {
         }
     }
 
-    /// Mitsuba's scalar lookup: parity inverted (see the module docs).
-    #[inline]
+    /// Mitsuba's scalar lookup: parity inverted (see the module docs). Out of line, as `eval`.
+    #[inline(never)]
     pub fn eval_1(&self, p: TexturePoint) -> f32 {
         if self.first(p.uv) {
             self.color1.eval_1(p)

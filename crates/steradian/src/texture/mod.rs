@@ -59,8 +59,9 @@ pub enum Texture {
 }
 
 impl Texture {
-    /// The value at point `p`.
-    #[inline]
+    /// The value at point `p`. Always inlined (a constant is then read in place by the BSDF);
+    /// the other variants are calls.
+    #[inline(always)]
     pub fn eval(&self, p: TexturePoint) -> Spectrum {
         match self {
             Texture::Constant(v) => *v,
@@ -72,7 +73,7 @@ impl Texture {
 
     /// The value as one number, for scalar parameters (Mitsuba's `eval_1`): the channel mean
     /// of a constant, the luminance of a bitmap, the value of a 1-channel mesh attribute.
-    #[inline]
+    #[inline(always)]
     pub fn eval_1(&self, p: TexturePoint) -> f32 {
         match self {
             Texture::Constant(v) => v.element_sum() / 3.0,

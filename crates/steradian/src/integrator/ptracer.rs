@@ -16,8 +16,8 @@
 //!    by their direction sampling from the camera) straight to the camera, unless
 //!    `hide_emitters` or `max_depth` = 0: Le·cos θ_light/pdf · W·cos θ_cam/r² (delta lights
 //!    cannot be seen);
-//! 2. starting a ray from a light chosen by the scene's light selection
-//!    ([`Emitter::sample_ray`], weight Φ-density ratio / selection probability) and, at every
+//! 2. starting a ray from a light chosen uniformly ([`Emitter::sample_ray`], weight
+//!    Φ-density ratio / selection probability) and, at every
 //!    surface point reached (while the depth is below `max_depth`), splatting
 //!    β·f(x, ω_cam, ω_light)·|cos θ_cam|·W·cos θ/r², visibility tested, before sampling the BSDF
 //!    for the next direction with the importance-transport weight (the adjoint shading-normal
@@ -29,10 +29,9 @@
 //! integrator's image of the same scene (and Mitsuba's `ptracer`'s).
 //!
 //! Where steradian differs on purpose: only the pinhole `perspective` camera can be connected
-//! to (the loader refuses others with `ptracer`, as it refuses `projector` lights and media);
-//! light selection follows the integrator's default `light_selection` (Mitsuba picks lights
-//! uniformly; either is unbiased). The standard error of each pixel comes from the spread of
-//! its per-pass sums, the passes being independent.
+//! to (the render plan refuses other sensors with `ptracer`, the loader `projector` lights);
+//! lights are chosen uniformly, as Mitsuba chooses them. The standard error of each pixel comes
+//! from the spread of its per-pass sums, the passes being independent.
 
 use glam::Vec2;
 

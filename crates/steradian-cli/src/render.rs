@@ -9,6 +9,7 @@ use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use steradian::film::false_color_png;
 use steradian::film::{write_exr, write_exr_channels, write_png, ComponentFormat, ExrLayer};
+use steradian::integrator::Integrator;
 use steradian::render::{render, PixelQuantity, Progress, RenderError, RenderOptions};
 use steradian::sampling::SamplerKind;
 
@@ -244,14 +245,23 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             out.spp, out.spp_requested
         );
     }
+    // the work counted as it is done: a camera sample of `path` with n branches traces n
+    // paths from its first hit; the particle tracer's samples are light paths
+    let per_second = |n: u64| n as f64 / secs.max(1e-9) / 1e6;
+    let rate = match (&scene.integrator, out.branches) {
+        (Integrator::ParticleTracer(_), _) => {
+            format!("{:.2} M light paths/s", per_second(out.samples()))
+        }
+        (_, Some(n)) if n > 1 => format!(
+            "{:.2} Msamples/s, {:.2} Mpaths/s",
+            per_second(out.samples()),
+            per_second(out.samples() * n as u64)
+        ),
+        _ => format!("{:.2} Msamples/s", per_second(out.samples())),
+    };
     println!(
-        "rendered {}x{} at {} spp in {:.2} s ({:.2} Msamples/s), {} dropped NaN/Inf samples",
-        out.film.width,
-        out.film.height,
-        out.spp,
-        secs,
-        out.samples() as f64 / secs.max(1e-9) / 1e6,
-        out.dropped_samples
+        "rendered {}x{} at {} spp in {:.2} s ({rate}), {} dropped NaN/Inf samples",
+        out.film.width, out.film.height, out.spp, secs, out.dropped_samples
     );
     match (out.branches, out.pilot) {
         (Some(n), Some(p)) => println!(

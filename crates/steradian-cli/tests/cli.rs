@@ -86,10 +86,31 @@ fn builtin_scene_without_arguments() {
     assert!(stdout.contains("rendered 256x256 at 2 spp"), "{stdout}");
     assert!(stdout.contains("samples/s"), "{stdout}");
     assert!(stdout.contains("dropped NaN/Inf samples"), "{stdout}");
+    // the paths traced are counted beside the camera samples when a sample branches
+    let branches: u64 = stdout
+        .split("path: ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no branch count in {stdout}"));
+    assert_eq!(branches > 1, stdout.contains("Mpaths/s"), "{stdout}");
     assert!(dir.join("cornell-box.png").is_file());
     let img = read(&dir.join("cornell-box.exr"));
     assert_eq!((img.width, img.height), (256, 256));
     assert_finite_positive(&img);
+}
+
+/// The particle tracer's summary counts light paths.
+#[test]
+fn particle_tracer_summary_counts_light_paths() {
+    let dir = temp_dir("ptracer");
+    let xml = two_sensor_scene(&dir);
+    let text = std::fs::read_to_string(&xml).unwrap();
+    let text = text.replacen("<integrator type=\"path\"", "<integrator type=\"ptracer\"", 1);
+    assert!(text.contains("ptracer"), "{text}");
+    std::fs::write(&xml, text).unwrap();
+    let stdout = ok(&dir, &["render", xml.to_str().unwrap(), "--spp", "2"]);
+    assert!(stdout.contains("M light paths/s"), "{stdout}");
 }
 
 #[test]

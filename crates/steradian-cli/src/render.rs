@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -144,6 +144,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     {
         return Err(format!("output file '{}' must end in .exr", output.display()).into());
     }
+    let load_start = Instant::now();
     let scene = match &args.scene {
         Some(path) => steradian_mitsuba::load_file(path, &defines)?,
         None => steradian_mitsuba::load_string(
@@ -153,6 +154,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             &defines,
         )?,
     };
+    let load_time = load_start.elapsed();
     for w in &scene.warnings {
         eprintln!("{w}");
     }
@@ -213,6 +215,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let out = render(&scene, &opts)?;
     bar.finish_and_clear();
 
+    let write_start = Instant::now();
     let (image, error) = (out.image(), out.stderr_image());
     let aovs = out.aov_images();
     if aovs.is_empty() {
@@ -238,6 +241,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         println!("wrote the standard error of each pixel to {}", path.display());
     }
 
+    let write_time = write_start.elapsed();
     let secs = out.elapsed.as_secs_f64();
     if out.interrupted {
         eprintln!(
@@ -274,6 +278,13 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         }
         _ => {}
     }
+    println!(
+        "time: load {:.2} s (of which BVH build {:.2} s), render {:.2} s, write {:.2} s",
+        load_time.as_secs_f64(),
+        scene.scene.build_time().as_secs_f64(),
+        secs,
+        write_time.as_secs_f64()
+    );
     println!("wrote {} and {}", output.display(), png.display());
     Ok(())
 }

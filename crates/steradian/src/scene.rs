@@ -65,6 +65,8 @@ pub struct Scene {
     /// The bindings of each group's members, by instance (a hit's `instance` indexes it).
     instance_bindings: Vec<Arc<[ShapeBinding]>>,
     accel: Accel,
+    /// Wall time spent building the hierarchies (groups' and the scene's).
+    build_time: std::time::Duration,
     /// Next-event estimation's light choice: probability of each emitter, and the running sum.
     light_pmf: Vec<f32>,
     light_cdf: Vec<f32>,
@@ -132,6 +134,7 @@ impl Scene {
                 "only one environment emitter (`constant` or `envmap`) is allowed per scene".into(),
             );
         }
+        let build_start = std::time::Instant::now();
         let mut groups = Vec::with_capacity(desc.groups.len());
         for (g, members) in desc.groups.into_iter().enumerate() {
             let (members, bindings): (Vec<Shape>, Vec<ShapeBinding>) = members.into_iter().unzip();
@@ -164,6 +167,7 @@ impl Scene {
             instance_bindings.push(bindings.clone());
         }
         let accel = Accel::build_with_instances(&shapes, instances, Isa::detect());
+        let build_time = build_start.elapsed();
         let mut sensors = desc.sensors;
         for sensor in &mut sensors {
             sensor.set_scene(&accel.bounds());
@@ -182,7 +186,13 @@ impl Scene {
             sensors,
             instance_bindings,
             accel,
+            build_time,
         })
+    }
+
+    /// Wall time the ray-tracing hierarchies took to build (part of loading the scene).
+    pub fn build_time(&self) -> std::time::Duration {
+        self.build_time
     }
 
     /// Sizes of the scene's top-level hierarchy.

@@ -14,11 +14,7 @@ use common::{check_error, reference_scene as data, z_test_against};
 const SPP: u32 = 64;
 
 fn scene_with(from: &str, to: &str) -> steradian::render::Job {
-    let xml = std::fs::read_to_string(data("mesh-attribute.xml")).unwrap();
-    assert!(xml.contains(from), "{from}");
-    let xml = xml.replace(from, to);
-    steradian_mitsuba::load_string(&xml, Path::new("mutant.xml"), &data(""), &[])
-        .unwrap_or_else(|e| panic!("{e}"))
+    common::reference_scene_with("mesh-attribute.xml", from, to)
 }
 
 #[test]

@@ -15,10 +15,7 @@ use steradian::render::{render, RenderError, RenderOptions};
 const SPP: u32 = 64;
 
 fn scene_with(from: &str, to: &str) -> steradian::render::Job {
-    let xml = std::fs::read_to_string(data("ptracer.xml")).unwrap();
-    assert!(xml.contains(from), "{from}");
-    steradian_mitsuba::load_string(&xml.replace(from, to), Path::new("mutant.xml"), &data(""), &[])
-        .unwrap_or_else(|e| panic!("{e}"))
+    common::reference_scene_with("ptracer.xml", from, to)
 }
 
 #[test]

@@ -262,8 +262,8 @@ impl Scene {
         if b.is_empty() {
             return (Vec3::ZERO, 1.0);
         }
-        let center = b.center();
-        (center, ((b.max - center).length()).max(1e-3))
+        let (center, radius) = b.bounding_sphere();
+        (center, radius.max(1e-3))
     }
 
     /// Probability of choosing emitter `e` for next-event estimation (see [`LightSelection`]).
@@ -288,15 +288,12 @@ impl Scene {
             return self.emitters[0].sample_direction(&self.shapes, p, u);
         }
         // invert the CDF, then reuse u.x's position inside the chosen interval
-        let index = self.light_cdf.partition_point(|&c| c <= u.x).min(count - 1);
+        let (index, sel) = self.pick_emitter(u.x)?;
+        let index = index as usize;
         let lo = if index == 0 { 0.0 } else { self.light_cdf[index - 1] };
-        let u = Vec2::new(
-            ((u.x - lo) / self.light_pmf[index]).clamp(0.0, 1.0 - f32::EPSILON / 2.0),
-            u.y,
-        );
+        let u = Vec2::new(((u.x - lo) / sel).clamp(0.0, 1.0 - f32::EPSILON / 2.0), u.y);
         let emitter = &self.emitters[index];
         let mut es = emitter.sample_direction(&self.shapes, p, u)?;
-        let sel = self.emitter_selection_pdf(index as u32);
         es.weight /= sel;
         if es.support == Support::Extended {
             es.pdf *= sel;
@@ -326,13 +323,20 @@ impl Scene {
     /// the light).
     #[inline]
     pub fn unoccluded(&self, p: Vec3, n: Vec3, es: &EmitterSample) -> bool {
-        let origin = crate::geometry::offset_ray_origin(p, n, es.wi);
-        let shadow = if es.dist.is_finite() {
-            let d = p + es.wi * es.dist - origin;
+        self.unoccluded_along(p, n, es.wi, es.dist)
+    }
+
+    /// Whether nothing lies between `p` (on a surface with geometric normal `n`) and the point
+    /// at distance `dist` along unit direction `wi` (`f32::INFINITY`: nothing along the ray).
+    #[inline]
+    pub fn unoccluded_along(&self, p: Vec3, n: Vec3, wi: Vec3, dist: f32) -> bool {
+        let origin = crate::geometry::offset_ray_origin(p, n, wi);
+        let shadow = if dist.is_finite() {
+            let d = p + wi * dist - origin;
             let dist = d.length();
             Ray::new(origin, d / dist, dist * (1.0 - crate::geometry::interaction::SHADOW_EPSILON))
         } else {
-            Ray::infinite(origin, es.wi)
+            Ray::infinite(origin, wi)
         };
         !self.occluded(&shadow)
     }

@@ -5,6 +5,7 @@
 //! without importing the module that nests sensors in shapes.
 
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use steradian::geometry::Transform;
 use steradian::shape::{
@@ -103,7 +104,9 @@ fn ply(s: &ShapeArgs) -> Result<Shape, LoadError> {
     let path = mesh_file(s)?;
     let face_normals = face_normals(s.node)?;
     let (data, list) = read_ply_with_attributes(&path).map_err(mesh_err(s.node))?;
-    let attributes = MeshAttributes { indices: data.indices.as_slice().into(), list };
+    // the triangles are copied for the textures only when the file has attributes
+    let indices = if list.is_empty() { Arc::from([]) } else { data.indices.as_slice().into() };
+    let attributes = MeshAttributes { indices, list };
     let shape = mesh(s, Ok(data), face_normals)?;
     s.b.mesh_attributes.replace(AttributeSource::Mesh(attributes));
     Ok(shape)

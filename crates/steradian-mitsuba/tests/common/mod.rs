@@ -35,6 +35,20 @@ pub fn all_scenes() -> Vec<PathBuf> {
     v
 }
 
+/// The reference scene `name` loaded with every `from` in its text replaced by `to` (a
+/// mutation the tests expect to fail); `from` must occur.
+pub fn reference_scene_with(name: &str, from: &str, to: &str) -> Job {
+    let xml = std::fs::read_to_string(reference_scene(name)).unwrap();
+    assert!(xml.contains(from), "{name} has no {from}");
+    steradian_mitsuba::load_string(
+        &xml.replace(from, to),
+        Path::new("mutant.xml"),
+        &reference_scene(""),
+        &[],
+    )
+    .unwrap_or_else(|e| panic!("{e}"))
+}
+
 /// Mitsuba's render-test rule for `job` rendered at `spp` camera samples (seed 1) against
 /// `tests/reference/{reference}-ref.exr` and its per-sample variance `{reference}-var.exr`;
 /// prints the pass fraction under `what`. The render must drop no NaN/Inf sample.

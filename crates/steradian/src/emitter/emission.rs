@@ -75,7 +75,7 @@ impl Emitter {
                 weight: e.intensity * (4.0 * PI),
             },
             Emitter::Spot(e) => {
-                let one_minus = 1.0 - e.cutoff.cos();
+                let one_minus = 1.0 - e.cos_cutoff();
                 let d = e.frame.to_world(warp::square_to_uniform_cone(u_dir, one_minus));
                 EmittedRay {
                     ray: Ray::infinite(e.position, d),

@@ -120,6 +120,12 @@ impl SpotLight {
         }
     }
 
+    /// cos(cutoff): directions at a larger angle from the axis get no light.
+    #[inline]
+    pub fn cos_cutoff(&self) -> f32 {
+        self.cos_cutoff
+    }
+
     /// The fall-off factor for a unit direction `d` leaving the light (world space).
     #[inline]
     pub fn falloff(&self, d: Vec3) -> f32 {

@@ -208,8 +208,8 @@ impl Film {
         }
     }
 
-    /// Adds one pass of particle tracing: each pixel's splat sum `values[i]` (row-major, one
-    /// per pixel) as one sample of weight 1, so the developed image is the mean over passes
+    /// Adds one pass of particle tracing: each pixel's splat sum in `block` as one sample of
+    /// weight 1, so the developed image is the mean over passes
     /// and the standard error is that of the passes, which are independent.
     pub fn add_pass(&mut self, block: &SplatBlock) {
         debug_assert_eq!(block.sums().len(), self.data.len());

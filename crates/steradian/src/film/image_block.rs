@@ -328,7 +328,7 @@ impl ImageBlock {
 
 /// Offsets (pixels) from `p` to the centres of the pixels `lo`, `lo + 1`, … along one axis.
 #[inline(always)]
-fn tap_offsets(lo: i64, p: f32, out: &mut [f32]) {
+pub(super) fn tap_offsets(lo: i64, p: f32, out: &mut [f32]) {
     for (k, d) in out.iter_mut().enumerate() {
         *d = (lo + k as i64) as f32 + 0.5 - p;
     }

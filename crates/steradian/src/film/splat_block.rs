@@ -10,6 +10,7 @@
 use glam::Vec2;
 
 use super::filter::{ReconstructionFilter, MAX_FILTER_TAPS};
+use super::image_block::tap_offsets;
 use crate::Spectrum;
 
 /// One pass's splat sums over a whole film.
@@ -102,9 +103,7 @@ impl SplatBlock {
         let lo = (p - 0.5 - r).floor() as i64 + 1;
         let hi = (p - 0.5 + r).ceil() as i64 - 1;
         let n = ((hi - lo + 1).max(0) as usize).min(MAX_FILTER_TAPS);
-        for (k, wk) in w[..n].iter_mut().enumerate() {
-            *wk = (lo + k as i64) as f32 + 0.5 - p;
-        }
+        tap_offsets(lo, p, &mut w[..n]);
         self.filter.eval_in_place(&mut w[..n]);
         let sum: f32 = w[..n].iter().sum();
         if sum == 0.0 || !sum.is_finite() {

@@ -24,8 +24,8 @@
 //!    correction of Veach's thesis, §5.3, and no (η_i/η_t)² radiance factor at refractions);
 //!    Russian roulette after `rr_depth` with q = min(max(β)·η², 0.95).
 //!
-//! Every splat is scaled by 1/spp and spread with the film's filter normalised over its
-//! footprint, so a pixel is the mean radiance through it, in W/(m²·sr), like the `path`
+//! Every splat is spread with the film's filter normalised over its footprint and a pixel is
+//! the mean of its per-pass sums (Mitsuba's 1/spp scale), so it is the mean radiance through it, in W/(m²·sr), like the `path`
 //! integrator's image of the same scene (and Mitsuba's `ptracer`'s).
 //!
 //! Where steradian differs on purpose: only the pinhole `perspective` camera can be connected
@@ -36,9 +36,8 @@
 use glam::Vec2;
 
 use crate::bsdf::ShadingPoint;
-use crate::emitter::{Emitter, EmitterSample, Support};
+use crate::emitter::{Emitter, Support};
 use crate::film::SplatBlock;
-use crate::geometry::SurfaceInteraction;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
 use crate::sensor::{Sensor, SensorConnection};
@@ -80,20 +79,19 @@ impl ParticleTracer {
         self.max_depth.is_none_or(|m| depth < m)
     }
 
-    /// Traces one light path with sampler `s`, splatting `scale` times its contributions to
-    /// the camera into `block`.
+    /// Traces one light path with sampler `s`, splatting its contributions to the camera into
+    /// `block` (the driver takes the mean over passes, which is the 1/spp).
     pub fn trace(
         &self,
         scene: &Scene,
         sensor: &Sensor,
         s: &mut PixelSampler,
-        scale: f32,
         block: &mut SplatBlock,
     ) {
         let size = Vec2::new(block.width() as f32, block.height() as f32);
         let mut splat = |c: &SensorConnection, value: Spectrum| {
             if value != Spectrum::ZERO {
-                block.splat(c.film_uv * size, value * scale);
+                block.splat(c.film_uv * size, value);
             }
         };
         if self.max_depth != Some(0) && !self.hide_emitters {
@@ -126,7 +124,7 @@ impl ParticleTracer {
                 if ng_light * wl.z > 0.0 && ng_cam * wc.z > 0.0 {
                     let correction = ((wl.z * ng_cam) / (wc.z * ng_light)).abs();
                     let f = bsdf.eval(&sp, wc, wl) * (wc.z.abs() * correction * c.weight);
-                    if f != Spectrum::ZERO && visible(scene, &si, &c) {
+                    if f != Spectrum::ZERO && scene.unoccluded_along(si.p, si.n, c.wi, c.dist) {
                         splat(&c, beta * f);
                     }
                 }
@@ -186,14 +184,7 @@ impl ParticleTracer {
                 if cos <= 0.0 || le == Spectrum::ZERO {
                     return;
                 }
-                let es = EmitterSample {
-                    wi: c.wi,
-                    dist: c.dist,
-                    pdf: 1.0,
-                    weight: Spectrum::ZERO,
-                    support: Support::Delta,
-                };
-                if scene.unoccluded(ps.p, ps.n, &es) {
+                if scene.unoccluded_along(ps.p, ps.n, c.wi, c.dist) {
                     splat(&c, le * (cos * c.weight / (ps.pdf_area * pmf)));
                 }
             }
@@ -205,23 +196,10 @@ impl ParticleTracer {
                 };
                 let Some(c) = sensor.sample_direction_at_infinity(es.wi) else { return };
                 // the pinhole is no surface: the shadow ray leaves it along its own direction
-                if es.pdf > 0.0 && scene.unoccluded(origin, es.wi, &es) {
+                if es.pdf > 0.0 && scene.unoccluded_along(origin, es.wi, es.wi, es.dist) {
                     splat(&c, es.weight * (c.weight / pmf));
                 }
             }
         }
     }
-}
-
-/// Whether nothing lies between surface point `si` and the camera of connection `c`.
-#[inline]
-fn visible(scene: &Scene, si: &SurfaceInteraction, c: &SensorConnection) -> bool {
-    let es = EmitterSample {
-        wi: c.wi,
-        dist: c.dist,
-        pdf: 1.0,
-        weight: Spectrum::ZERO,
-        support: Support::Delta,
-    };
-    scene.unoccluded(si.p, si.n, &es)
 }

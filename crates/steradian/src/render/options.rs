@@ -218,7 +218,7 @@ impl<'a> Plan<'a> {
             return Err(RenderError::NotLight);
         }
         if matches!(job.integrator, crate::integrator::Integrator::ParticleTracer(_))
-            && (opts.quantity.is_surface_map() || !sensor.connects_particles())
+            && (opts.quantity.is_surface_map() || sensor.pinhole().is_none())
         {
             return Err(RenderError::ParticlesNeedPinhole);
         }

@@ -54,7 +54,7 @@ pub(super) fn render_particles(
                     }
                     for x in 0..width {
                         let mut s = sampler.pixel_sampler(UVec2::new(x, y), width, pass);
-                        tracer.trace(scene, sensor, &mut s, 1.0, &mut block);
+                        tracer.trace(scene, sensor, &mut s, &mut block);
                     }
                 }
                 let done =

@@ -117,17 +117,13 @@ impl Sensor {
         }
     }
 
-    /// The pinhole of a camera particle tracing connects to (`None` for other sensors).
+    /// The pinhole of a camera particle tracing connects to (`None` for other sensors, which
+    /// it cannot connect to).
     pub fn pinhole(&self) -> Option<glam::Vec3> {
         match &self.kind {
             SensorKind::Perspective(c) => Some(c.to_world.point(glam::Vec3::ZERO)),
             _ => None,
         }
-    }
-
-    /// Whether particle tracing can connect to this sensor (see [`Sensor::sample_direction`]).
-    pub fn connects_particles(&self) -> bool {
-        matches!(self.kind, SensorKind::Perspective(_))
     }
 
     /// What the sensor measures.

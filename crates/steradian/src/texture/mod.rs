@@ -99,18 +99,6 @@ impl Texture {
         !matches!(self, Texture::Checkerboard(_) | Texture::MeshAttribute(_))
     }
 
-    /// True when the texture, anywhere in its tree, reads the attributes of the mesh it is
-    /// evaluated on (so it needs a point on a triangle, not only (u, v)).
-    pub fn uses_mesh_attributes(&self) -> bool {
-        match self {
-            Texture::Constant(_) | Texture::Bitmap(_) => false,
-            Texture::Checkerboard(c) => {
-                c.color0.uses_mesh_attributes() || c.color1.uses_mesh_attributes()
-            }
-            Texture::MeshAttribute(_) => true,
-        }
-    }
-
     /// The number of channels when a scalar reading ([`Texture::eval_1`]) is undefined in
     /// Mitsuba: a 3-channel mesh attribute anywhere in the tree.
     pub fn scalar_reading_refused(&self) -> Option<&str> {

@@ -19,18 +19,21 @@
 //!   included fragment's own folder), which older steradian scenes rely on; where Mitsuba
 //!   finds the file, this fallback is never reached, so both renderers open the same file.
 
+use std::cell::RefCell;
 use std::path::{Path, PathBuf};
 
-/// The search folders of one scene, in lookup order.
+/// The search folders of one scene, in lookup order, and the files the scene has read so far.
 #[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct FileResolver {
     paths: Vec<PathBuf>,
+    /// Files read: the scene file, its includes, each plugin's `filename` (in order, once).
+    read: RefCell<Vec<PathBuf>>,
 }
 
 impl FileResolver {
     /// A resolver that searches `base` (the main scene's folder).
     pub fn new(base: &Path) -> FileResolver {
-        FileResolver { paths: vec![base.to_path_buf()] }
+        FileResolver { paths: vec![base.to_path_buf()], read: RefCell::default() }
     }
 
     /// Searches `dir` before every folder added so far (`<path>`).
@@ -39,6 +42,20 @@ impl FileResolver {
             self.paths.remove(i);
         }
         self.paths.insert(0, dir);
+    }
+
+    /// Notes that the scene reads `file` (what [`files_read`](Self::files_read) lists).
+    pub fn record(&self, file: &Path) {
+        let mut read = self.read.borrow_mut();
+        if !read.iter().any(|p| p == file) {
+            read.push(file.to_path_buf());
+        }
+    }
+
+    /// The files the scene read, in the order first read: what a scene needs to be loaded
+    /// elsewhere (a distributed render ships them), and what its digest covers.
+    pub fn files_read(&self) -> Vec<PathBuf> {
+        self.read.borrow().iter().filter(|p| p.is_file()).cloned().collect()
     }
 
     /// The search folders, first match first.

@@ -138,8 +138,8 @@ pub fn run_case(
         },
     )
     .map_err(|e| e.to_string())?;
-    let image = out.film.develop();
-    let err = out.film.develop_stderr();
+    let image = out.film().develop();
+    let err = out.film().develop_stderr();
     let (measured, stderr) = match case["reduce"].as_str() {
         Some("pixel") => {
             let (m, s) = (image.get(0, 0), err.get(0, 0));

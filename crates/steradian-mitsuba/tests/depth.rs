@@ -20,7 +20,7 @@ fn depth_scene_matches_mitsuba() {
         steradian_mitsuba::load_file(&data("depth.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
     let out = render(&job, &RenderOptions { spp: Some(SPP), seed: Some(1), ..Default::default() })
         .unwrap();
-    let img = out.film.develop();
+    let img = out.film().develop();
     let mean = read_exr(&data("depth-ref.exr")).unwrap();
     let var = read_exr(&data("depth-var.exr")).unwrap();
     let z = z_test(&img, SPP, &mean, &var);

@@ -82,7 +82,7 @@ fn a_lambertian_board_under_a_uniform_sky_reads_its_mean_albedo() {
         &RenderOptions { spp: Some(SPP), seed: Some(3), threads: Some(1), ..Default::default() },
     )
     .unwrap();
-    let (v, se) = (out.film.develop().get(0, 0), out.film.develop_stderr().get(0, 0));
+    let (v, se) = (out.film().develop().get(0, 0), out.film().develop_stderr().get(0, 0));
     let expected = [(0.1 + 0.8) / 2.0 * 2.0, (0.2 + 0.6) / 2.0, (0.7 + 0.2) / 2.0 * 0.5];
     for (c, e) in expected.into_iter().enumerate() {
         let z = (v[c] as f64 - e).abs() / se[c] as f64;

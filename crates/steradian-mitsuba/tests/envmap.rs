@@ -28,7 +28,7 @@ fn z_test_against(job: &Job, reference: &str, spp: u32) -> steradian::film::ZTes
     let out = render(job, &RenderOptions { spp: Some(spp), seed: Some(1), ..Default::default() })
         .unwrap();
     assert_eq!(out.dropped_samples, 0, "NaN/Inf samples");
-    let img = out.film.develop();
+    let img = out.film().develop();
     let r = read_exr(&data(&format!("{reference}-ref.exr"))).unwrap();
     let v = read_exr(&data(&format!("{reference}-var.exr"))).unwrap();
     let z = z_test(&img, spp, &r, &v);
@@ -129,7 +129,7 @@ fn uniform_envmap_renders_like_constant() {
                 },
             )
             .unwrap();
-            (out.film.develop(), out.film.develop_stderr())
+            (out.film().develop(), out.film().develop_stderr())
         };
         let (env, constant) = (run(UNIFORM_ENVMAP, 1), run(UNIFORM_CONSTANT, 2));
         let (worst, outliers) = max_z_and_outliers((&env.0, &env.1), (&constant.0, &constant.1));
@@ -175,7 +175,7 @@ fn irradiance_under_a_uniform_envmap_is_pi_l() {
         },
     )
     .unwrap();
-    let (v, e) = (out.film.develop().get(0, 0), out.film.develop_stderr().get(0, 0));
+    let (v, e) = (out.film().develop().get(0, 0), out.film().develop_stderr().get(0, 0));
     let want = glam::Vec3A::new(0.6, 0.8, 1.0) * std::f32::consts::PI;
     eprintln!("irradiance {v} ± {e}, π L = {want}");
     for c in 0..3 {

@@ -117,6 +117,6 @@ fn instances_share_one_copy_of_the_geometry() {
     assert_eq!(out.dropped_samples, 0);
     // vertex colours in [0.05, 0.95] under a unit sky (the background, 1): the spheres seen
     // darken the image, and are not black
-    let [r, g, b] = out.film.develop().channel_means();
+    let [r, g, b] = out.film().develop().channel_means();
     assert!([r, g, b].iter().all(|&m| m > 0.3 && m < 0.95), "{r} {g} {b}");
 }

@@ -25,7 +25,7 @@ fn measure(xml: &str, id: &str, spp: u32, seed: u64) -> ([f64; 3], [f64; 3]) {
         },
     )
     .unwrap();
-    let (v, e) = (out.film.develop().get(0, 0), out.film.develop_stderr().get(0, 0));
+    let (v, e) = (out.film().develop().get(0, 0), out.film().develop_stderr().get(0, 0));
     ([v.x as f64, v.y as f64, v.z as f64], [e.x as f64, e.y as f64, e.z as f64])
 }
 
@@ -168,8 +168,10 @@ fn error_bars_cover_the_truth_95_percent_of_the_time() {
             },
         )
         .unwrap();
-        let (v, e) =
-            (out.film.develop().get(0, 0).x as f64, out.film.develop_stderr().get(0, 0).x as f64);
+        let (v, e) = (
+            out.film().develop().get(0, 0).x as f64,
+            out.film().develop_stderr().get(0, 0).x as f64,
+        );
         assert!(e > 0.0);
         if (v - expected).abs() <= 2.0 * e {
             inside += 1;
@@ -205,7 +207,7 @@ fn a_triangle_mesh_emitter_reads_like_the_rectangle_it_tiles() {
         },
     )
     .unwrap();
-    let (v, e) = (out.film.develop().get(0, 0), out.film.develop_stderr().get(0, 0));
+    let (v, e) = (out.film().develop().get(0, 0), out.film().develop_stderr().get(0, 0));
     std::fs::remove_dir_all(&dir).ok();
     let f = 0.167375010;
     for (c, l) in [2.0, 3.0, 4.0].iter().enumerate() {

@@ -45,7 +45,7 @@ fn render_with_stderr(
     };
     let out = render(&scene, &opts).unwrap();
     assert_eq!(out.dropped_samples, 0, "NaN/Inf samples in {}", path.display());
-    (out.film.develop(), out.film.develop_stderr(), scene)
+    (out.film().develop(), out.film().develop_stderr(), scene)
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -30,7 +30,7 @@ fn render_scene(name: &str, spp: u32) -> Image {
             .unwrap();
     assert_eq!(out.spp, spp);
     assert_eq!(out.dropped_samples, 0, "NaN/Inf samples in {name}");
-    out.film.develop()
+    out.film().develop()
 }
 
 fn compare(name: &str, spp: u32, max_rel_mse: f64, max_mean_error: f64) {

@@ -26,7 +26,7 @@ fn scene() -> Job {
 }
 
 fn pixels(out: &RenderOutput) -> Vec<f32> {
-    out.film.develop().data
+    out.film().develop().data
 }
 
 #[test]

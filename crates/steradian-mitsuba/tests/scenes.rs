@@ -306,6 +306,6 @@ fn pgo_training_scene_renders() {
     let out = render(&scene, &RenderOptions { spp: Some(2), seed: Some(1), ..Default::default() })
         .unwrap();
     assert_eq!(out.dropped_samples, 0);
-    let m = out.film.develop().channel_means();
+    let m = out.film().develop().channel_means();
     assert!(m.iter().all(|x| x.is_finite() && *x > 1e-3), "channel means {m:?}");
 }

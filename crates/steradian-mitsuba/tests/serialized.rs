@@ -137,7 +137,7 @@ fn serialized_scene_matches_mitsuba() {
         render(&scene, &RenderOptions { spp: Some(SPP), seed: Some(1), ..Default::default() })
             .unwrap();
     assert_eq!(out.dropped_samples, 0);
-    let img = out.film.develop();
+    let img = out.film().develop();
     let reference = read_exr(&data("serialized-ref.exr")).unwrap();
     let variance = read_exr(&data("serialized-var.exr")).unwrap();
     let z = z_test(&img, SPP, &reference, &variance);

@@ -361,7 +361,7 @@ fn mean_and_se(xml: &str, spp: u32, n: u64) -> (f64, f64) {
                 &RenderOptions { spp: Some(spp), seed: Some(seed), ..Default::default() },
             )
             .unwrap();
-            out.film.develop().channel_means()[0]
+            out.film().develop().channel_means()[0]
         })
         .collect();
     let m = means.iter().sum::<f64>() / n as f64;

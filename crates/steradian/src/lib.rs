@@ -58,3 +58,6 @@ pub mod texture;
 
 pub use glam::{Mat3, Mat4, Vec2, Vec3};
 pub use spectrum::Spectrum;
+
+/// steradian's version, as recorded in checkpoints and distributed sums.
+pub const VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -80,7 +80,9 @@ impl Builder {
         } else {
             self.base_dir.clone()
         };
-        self.resolver.resolve(file, &declared_in)
+        let path = self.resolver.resolve(file, &declared_in);
+        self.resolver.record(&path);
+        path
     }
 
     /// Records a warning for the front end (the scene still loads).
@@ -315,7 +317,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
     b.desc.light_selection = integrator.light_selection();
     let scene = Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))?;
     let warnings = b.warnings.into_inner().iter().map(ToString::to_string).collect();
-    Ok(Job { scene, integrator, warnings })
+    Ok(Job { scene, integrator, warnings, inputs: b.resolver.files_read() })
 }
 
 #[cfg(test)]

@@ -36,6 +36,7 @@ pub fn parse_file(path: &Path, defines: &[(String, String)]) -> Result<SceneNode
     })?;
     let dir = path.parent().map(Path::to_path_buf).unwrap_or_default();
     let mut p = Parser::new(defines, &dir);
+    p.resolver.record(path);
     p.include_stack.push(path.canonicalize().unwrap_or_else(|_| path.to_path_buf()));
     p.parse_root(Arc::new(path.to_path_buf()), &text, dir)
 }
@@ -472,6 +473,7 @@ impl Parser {
         let text = std::fs::read_to_string(&path).map_err(|e| {
             attrs.error(format!("cannot read included file \"{}\": {e}", path.display()))
         })?;
+        self.resolver.record(&path);
         let ipath = Arc::new(path.clone());
         let doc = parse_doc(&ipath, &text)?;
         let root = doc.root_element();

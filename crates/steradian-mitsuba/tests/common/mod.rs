@@ -56,7 +56,7 @@ pub fn z_test_against(job: &Job, spp: u32, reference: &str, what: &str) -> ZTest
     let out = render(job, &RenderOptions { spp: Some(spp), seed: Some(1), ..Default::default() })
         .unwrap_or_else(|e| panic!("{what}: {e}"));
     assert_eq!(out.dropped_samples, 0, "{what}: NaN/Inf samples");
-    let img = out.film.develop();
+    let img = out.film().develop();
     let mean = read_exr(&reference_scene(&format!("{reference}-ref.exr"))).unwrap();
     let var = read_exr(&reference_scene(&format!("{reference}-var.exr"))).unwrap();
     let z = z_test(&img, spp, &mean, &var);
@@ -77,7 +77,7 @@ pub fn z_test_against(job: &Job, spp: u32, reference: &str, what: &str) -> ZTest
 pub fn image_mean_z(job: &Job, spp: u32, reference: &str, ref_spp: u32) -> f64 {
     let out = render(job, &RenderOptions { spp: Some(spp), seed: Some(1), ..Default::default() })
         .unwrap();
-    let (img, se) = (out.film.develop(), out.film.develop_stderr());
+    let (img, se) = (out.film().develop(), out.film().develop_stderr());
     let mean = read_exr(&reference_scene(&format!("{reference}-ref.exr"))).unwrap();
     let var = read_exr(&reference_scene(&format!("{reference}-var.exr"))).unwrap();
     let n = (img.data.len() / 3) as f64;
@@ -142,7 +142,7 @@ pub fn scene_mean_and_error(s: &Job, seed: u64) -> (f64, f64) {
         },
     )
     .unwrap();
-    let (img, err) = (out.film.develop(), out.film.develop_stderr());
+    let (img, err) = (out.film().develop(), out.film().develop_stderr());
     let n = (img.width * img.height) as f64;
     let mean = img.data.iter().step_by(3).map(|&v| v as f64).sum::<f64>() / n;
     let se = err.data.iter().step_by(3).map(|&e| (e as f64).powi(2)).sum::<f64>().sqrt() / n;

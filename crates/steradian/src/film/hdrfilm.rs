@@ -169,6 +169,16 @@ impl Film {
         &self.data[y as usize * self.width as usize + x as usize]
     }
 
+    /// The raw sums: per pixel (row-major) and, pixel-major then layer, the AOV layers' Σw·a.
+    pub fn sums(&self) -> (&[PixelAccum], &[[f64; 3]]) {
+        (&self.data, &self.aov)
+    }
+
+    /// The raw sums, writable (a checkpoint or a range read back), and the dropped count.
+    pub fn sums_mut(&mut self) -> (&mut [PixelAccum], &mut [[f64; 3]], &mut u64) {
+        (&mut self.data, &mut self.aov, &mut self.dropped)
+    }
+
     /// Resets all sums to zero.
     pub fn clear(&mut self) {
         self.data.fill(PixelAccum::default());

@@ -170,6 +170,11 @@ impl ImageBlock {
         self.clear();
     }
 
+    /// Counts `n` samples dropped before they reached the block (a NaN/Inf estimate).
+    pub fn add_dropped(&mut self, n: u64) {
+        self.dropped += n;
+    }
+
     /// Resets all sums and the dropped count to zero.
     pub fn clear(&mut self) {
         self.data.fill(PixelAccum::default());

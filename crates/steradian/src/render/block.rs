@@ -4,7 +4,8 @@
 
 use glam::{UVec2, Vec2};
 
-use super::options::{PixelQuantity, Plan};
+use super::options::Plan;
+use super::quantity::PixelQuantity;
 use super::schedule::WorkItem;
 use crate::film::{ImageBlock, ReconstructionFilter};
 use crate::integrator::{estimate_irradiance, Integrator};
@@ -35,9 +36,8 @@ pub const MAX_AOV_LAYERS: usize = 16;
 
 /// A rendered work item.
 pub(super) struct RenderedBlock {
+    /// The sums, with the count of samples dropped for a NaN or infinite value.
     pub block: ImageBlock,
-    /// Samples dropped for a NaN or infinite value.
-    pub dropped: u64,
 }
 
 impl<'a> BlockRenderer<'a> {
@@ -123,7 +123,8 @@ impl<'a> BlockRenderer<'a> {
                 }
             }
         }
-        Some(RenderedBlock { block, dropped })
+        block.add_dropped(dropped);
+        Some(RenderedBlock { block })
     }
 
     /// One sample of the sensor's measurement at film position `film_uv ∈ [0,1]²`: for cameras

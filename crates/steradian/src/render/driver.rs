@@ -1,5 +1,6 @@
 //! [`render`]: a plan, a branch-count pilot where `path` leaves it open, the pass schedule,
-//! worker threads that render items, and this thread merging them into the film.
+//! worker threads that render items, and this thread merging them into passes and the passes
+//! into the render's sums.
 
 use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc;
@@ -7,105 +8,216 @@ use std::time::Instant;
 
 use super::block::BlockRenderer;
 use super::merge::{PassGate, PassMerger};
-use super::options::{PixelQuantity, Plan, Progress, RenderError, RenderOptions, RenderOutput};
-use super::schedule::schedule;
+use super::options::{Plan, Progress, RenderError, RenderOptions, RenderOutput};
+use super::quantity::PixelQuantity;
+use super::schedule::{self, schedule};
+use super::sums::RenderSums;
 use super::Job;
 use crate::film::ImageBlock;
-use crate::integrator::{pilot, Branches, Integrator, PathTracer, DEFAULT_BRANCHES};
+use crate::integrator::{pilot, Branches, Integrator, PathTracer, Pilot, DEFAULT_BRANCHES};
 
-/// Renders the job's sensor (`opts.sensor`, the first by default) into a film.
+/// The samples per pixel at which the passes of a render of `spp` samples with `integrator`
+/// end, from 0 to `spp`: ranges, checkpoints and distributed tasks start and end on them.
+pub fn pass_bounds(integrator: &Integrator, spp: u32) -> Vec<u32> {
+    match integrator {
+        // one whole-film pass of light paths per sample
+        Integrator::ParticleTracer(_) => (0..=spp).collect(),
+        _ => schedule::pass_bounds(spp),
+    }
+}
+
+/// What a render will do, decided before it starts: its passes, its branch count (the
+/// pilot's, which this runs where `path` leaves it open) and the header of its sums.
+#[derive(Clone, Debug)]
+pub struct RenderPlan {
+    pub header: super::SumsHeader,
+    /// [`pass_bounds`] of the render.
+    pub pass_bounds: Vec<u32>,
+    /// What the pilot measured, when one ran.
+    pub pilot: Option<Pilot>,
+}
+
+/// Plans the render `opts` asks for (see [`RenderPlan`]) without rendering it.
+pub fn plan(job: &Job, opts: &RenderOptions) -> Result<RenderPlan, RenderError> {
+    let plan = Plan::new(job, opts)?;
+    let pool = thread_pool(opts)?;
+    let (integrator, pilot) = resolve_branches(job, &plan, opts, &pool);
+    let header =
+        plan.header(branch_count(&integrator), opts.sensor.unwrap_or(0), opts.scene_digest);
+    Ok(RenderPlan { header, pass_bounds: pass_bounds(&job.integrator, plan.spp), pilot })
+}
+
+fn thread_pool(opts: &RenderOptions) -> Result<rayon::ThreadPool, RenderError> {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(opts.threads.unwrap_or(0))
+        .build()
+        .map_err(|e| RenderError::ThreadPool(e.to_string()))
+}
+
+/// The integrator with `path`'s branch count fixed: the options' (or the resumed sums') count,
+/// else the pilot's. Surface maps estimate irradiance, whose paths keep the default count: no
+/// pilot for them.
+fn resolve_branches(
+    job: &Job,
+    plan: &Plan,
+    opts: &RenderOptions,
+    pool: &rayon::ThreadPool,
+) -> (Integrator, Option<Pilot>) {
+    match &job.integrator {
+        Integrator::Path(p)
+            if p.branches == Branches::Auto && plan.quantity == PixelQuantity::Sensor =>
+        {
+            let given = opts.branches.or(opts.resume.as_ref().map(|r| r.header.branches));
+            let (n, pilot_run) = match given.filter(|&n| n >= 1) {
+                Some(n) => (n, None),
+                None => {
+                    let (sensor, sampler) = (plan.sensor, &plan.sampler);
+                    let (w, h) = (plan.film.width, plan.film.height);
+                    let run =
+                        pool.install(|| pilot(p, &job.scene, sensor, w, h, plan.spp, sampler));
+                    (run.map_or(DEFAULT_BRANCHES, |p| p.branches), run)
+                }
+            };
+            (Integrator::Path(PathTracer { branches: Branches::Fixed(n), ..p.clone() }), pilot_run)
+        }
+        other => (other.clone(), None),
+    }
+}
+
+fn branch_count(integrator: &Integrator) -> u32 {
+    match integrator {
+        Integrator::Path(p) => p.branches.count(),
+        Integrator::Direct(_)
+        | Integrator::Depth(_)
+        | Integrator::Moment(_)
+        | Integrator::Aov(_)
+        | Integrator::ParticleTracer(_) => 0,
+    }
+}
+
+/// Renders the job's sensor (`opts.sensor`, the first by default): all its samples, the
+/// range `opts.range`, or what `opts.resume` lacks.
 pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderError> {
     let plan = Plan::new(job, opts)?;
-    let (scene, sensor, spp, quantity) = (&job.scene, plan.sensor, plan.spp, plan.quantity);
+    let (scene, spp) = (&job.scene, plan.spp);
     let (width, height) = (plan.film.width, plan.film.height);
     let start = Instant::now();
     let cancelled = || opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    let pool = thread_pool(opts)?;
+    let (integrator, pilot_run) = resolve_branches(job, &plan, opts, &pool);
+    let header =
+        plan.header(branch_count(&integrator), opts.sensor.unwrap_or(0), opts.scene_digest);
 
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(opts.threads.unwrap_or(0))
-        .build()
-        .map_err(|e| RenderError::ThreadPool(e.to_string()))?;
+    // the range: on pass boundaries, continuing the resumed sums
+    let bounds = pass_bounds(&job.integrator, spp);
+    let (first, end) = match (opts.range, &opts.resume) {
+        (Some(r), _) => r,
+        (None, Some(sums)) => (sums.end(), spp),
+        (None, None) => (0, spp),
+    };
+    if first > end || !bounds.contains(&first) || !bounds.contains(&end) {
+        return Err(RenderError::BadRange { first, end, bounds });
+    }
+    let mut sums = match &opts.resume {
+        Some(resumed) => {
+            resumed.check_same_render(&header).map_err(RenderError::Resume)?;
+            if resumed.end() != first {
+                return Err(RenderError::Resume(super::SumsError::NotContiguous {
+                    expected: resumed.end(),
+                    got: first,
+                }));
+            }
+            resumed.clone().on_film(&plan.film)
+        }
+        None => RenderSums::empty(header, &plan.film, first),
+    };
+    let pixels = width as u64 * height as u64;
+    let samples_total = pixels * end as u64;
+    let samples_done = AtomicU64::new(pixels * first as u64);
+    let progress = |done: u64| {
+        if let Some(cb) = opts.progress {
+            cb(Progress { samples_done: done, samples_total, elapsed: start.elapsed() });
+        }
+    };
+    let mut add_pass = |pass_end: u32, pass: crate::film::Film| {
+        sums.push_pass(pass_end, pass);
+        if let Some(cb) = opts.on_pass {
+            cb(&sums);
+        }
+    };
 
     if let Integrator::ParticleTracer(tracer) = &job.integrator {
         let threads = pool.current_num_threads();
-        return Ok(super::particles::render_particles(job, tracer, plan, opts, threads));
+        let report = |n: u64| progress(samples_done.fetch_add(n, Ordering::Relaxed) + n);
+        super::particles::render_particles(
+            job,
+            tracer,
+            &plan,
+            (first, end),
+            threads,
+            &cancelled,
+            &report,
+            &mut add_pass,
+        );
+    } else {
+        let sched = schedule(width, height, spp);
+        // the items of the passes in the range
+        let pass_of = |bound: u32| bounds.iter().position(|&b| b == bound).expect("checked");
+        let (p0, p1) = (pass_of(first), pass_of(end));
+        let item_start = if p0 == 0 { 0 } else { sched.pass_ends[p0 - 1].0 };
+        let item_end = if p1 == 0 { 0 } else { sched.pass_ends[p1 - 1].0 };
+        let items = &sched.items[item_start..item_end];
+        let pass_ends: Vec<(usize, u32)> =
+            sched.pass_ends[p0..p1].iter().map(|&(e, s)| (e - item_start, s)).collect();
+
+        let blocks = BlockRenderer::new(scene, &integrator, &plan);
+        let next = AtomicUsize::new(0);
+        let gate = PassGate::new(sched.window);
+        let mut merger = PassMerger::new(items.len(), pass_ends, &plan.film);
+        std::thread::scope(|scope| {
+            let (tx, rx) = mpsc::channel::<(usize, ImageBlock)>();
+            for _ in 0..pool.current_num_threads() {
+                let tx = tx.clone();
+                let (next, gate, blocks) = (&next, &gate, &blocks);
+                let (samples_done, cancelled, progress) = (&samples_done, &cancelled, &progress);
+                scope.spawn(move || loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= items.len() || cancelled() {
+                        break;
+                    }
+                    gate.wait_for(i, cancelled);
+                    // an item cut short by a cancel is not sent, so its pass is never merged
+                    let Some(r) = blocks.render(&items[i], cancelled) else { break };
+                    let item = &items[i];
+                    let n = item.size.x as u64 * item.size.y as u64 * (item.s1 - item.s0) as u64;
+                    progress(samples_done.fetch_add(n, Ordering::Relaxed) + n);
+                    if tx.send((i, r.block)).is_err() {
+                        break;
+                    }
+                });
+            }
+            drop(tx);
+            for (i, block) in rx {
+                gate.advance(merger.add(i, block, &mut add_pass));
+            }
+        });
     }
-
-    // `path` with `branches` unset: a pilot picks the count (integrator/branching.rs). Surface
-    // maps estimate irradiance, whose paths keep the default count: no pilot for them.
-    let mut pilot_run = None;
-    let integrator = match &job.integrator {
-        Integrator::Path(p)
-            if p.branches == Branches::Auto && quantity == PixelQuantity::Sensor =>
-        {
-            pilot_run = pool.install(|| pilot(p, scene, sensor, width, height, spp, &plan.sampler));
-            let n = pilot_run.map_or(DEFAULT_BRANCHES, |p| p.branches);
-            Integrator::Path(PathTracer { branches: Branches::Fixed(n), ..p.clone() })
-        }
-        other => other.clone(),
-    };
-
-    let sched = schedule(width, height, spp);
-    let blocks = BlockRenderer::new(scene, &integrator, &plan);
-    let mut film = plan.film;
-    let samples_total = width as u64 * height as u64 * spp as u64;
-    let samples_done = AtomicU64::new(0);
-    let dropped = AtomicU64::new(0);
-    let next = AtomicUsize::new(0);
-    let gate = PassGate::new(sched.window);
-    let mut merger = PassMerger::new(sched.items.len(), sched.pass_ends.clone());
-    std::thread::scope(|scope| {
-        let (tx, rx) = mpsc::channel::<(usize, ImageBlock)>();
-        for _ in 0..pool.current_num_threads() {
-            let tx = tx.clone();
-            let (next, gate, items, blocks) = (&next, &gate, &sched.items, &blocks);
-            let (samples_done, dropped, cancelled) = (&samples_done, &dropped, &cancelled);
-            scope.spawn(move || loop {
-                let i = next.fetch_add(1, Ordering::Relaxed);
-                if i >= items.len() || cancelled() {
-                    break;
-                }
-                gate.wait_for(i, cancelled);
-                // an item cut short by a cancel is not sent, so its pass is never merged
-                let Some(r) = blocks.render(&items[i], cancelled) else { break };
-                if r.dropped > 0 {
-                    dropped.fetch_add(r.dropped, Ordering::Relaxed);
-                }
-                let item = &items[i];
-                let n = item.size.x as u64 * item.size.y as u64 * (item.s1 - item.s0) as u64;
-                let done = samples_done.fetch_add(n, Ordering::Relaxed) + n;
-                if let Some(cb) = opts.progress {
-                    cb(Progress { samples_done: done, samples_total, elapsed: start.elapsed() });
-                }
-                if tx.send((i, r.block)).is_err() {
-                    break;
-                }
-            });
-        }
-        drop(tx);
-        for (i, block) in rx {
-            gate.advance(merger.add(i, block, &mut film));
-        }
-    });
-    let spp_done = merger.spp_done();
+    let film_spp = sums.end() - sums.first();
     Ok(RenderOutput {
-        film,
-        quantity,
+        quantity: plan.quantity,
         branches: match &integrator {
             Integrator::Path(p) => Some(p.branches.count()),
-            Integrator::Direct(_)
-            | Integrator::Depth(_)
-            | Integrator::Moment(_)
-            | Integrator::Aov(_)
-            | Integrator::ParticleTracer(_) => None,
+            _ => None,
         },
         pilot: pilot_run,
-        spp: spp_done,
-        spp_requested: spp,
-        dropped_samples: dropped.load(Ordering::Relaxed),
+        spp: film_spp,
+        spp_requested: end - sums.first(),
+        spp_rendered: sums.end() - first,
+        dropped_samples: sums.film().dropped(),
         elapsed: start.elapsed(),
         // a cancel that came after the last tile changes nothing
-        interrupted: spp_done < spp,
+        interrupted: sums.end() < end,
+        sums,
     })
 }
 

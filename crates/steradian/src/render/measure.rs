@@ -44,7 +44,7 @@ pub fn measure(job: &Job, opts: &RenderOptions) -> Result<Measurement, RenderErr
 impl Measurement {
     /// The image mean of a finished render and the standard error of that mean.
     pub fn from_render(out: &RenderOutput, sensor: usize, quantity: Quantity) -> Measurement {
-        let (value, error) = (out.film.develop(), out.film.develop_stderr());
+        let (value, error) = (out.film().develop(), out.film().develop_stderr());
         let n = value.pixel_count().max(1) as f64;
         let mut var = [0.0f64; 3];
         for e in error.data.chunks_exact(3) {
@@ -92,19 +92,34 @@ mod tests {
             block.put(Vec2::new(1.5, 0.5), crate::Spectrum::splat(5.0));
         }
         film.merge(&block);
+        let header = crate::render::SumsHeader {
+            width: 2,
+            height: 1,
+            aov_layers: 0,
+            spp: 2,
+            seed: 0,
+            sampler: crate::sampling::SamplerKind::Independent,
+            branches: 3,
+            quantity: crate::render::PixelQuantity::Sensor,
+            sensor: 0,
+            scene_digest: 0,
+        };
+        let mut sums = crate::render::RenderSums::empty(header, &film, 0);
+        sums.push_pass(2, film);
         let out = RenderOutput {
-            film,
+            sums,
             quantity: crate::render::PixelQuantity::Sensor,
             branches: Some(3),
             pilot: None,
             spp: 2,
             spp_requested: 2,
+            spp_rendered: 2,
             dropped_samples: 0,
             elapsed: Duration::ZERO,
             interrupted: false,
         };
         let m = Measurement::from_render(&out, 0, Quantity::Radiance);
-        let se = out.film.develop_stderr();
+        let se = out.film().develop_stderr();
         for c in 0..3 {
             assert!((m.value[c] - 3.5).abs() < 1e-6, "{:?}", m.value);
             let want = ((se.data[c] as f64).powi(2) + (se.data[3 + c] as f64).powi(2)).sqrt() / 2.0;

@@ -1,9 +1,11 @@
-//! Merging rendered blocks into the film, pass by pass, in item order.
+//! Merging rendered blocks into passes, in item order.
 //!
 //! Blocks arrive in whatever order the threads finish them. A pass is merged once all its
-//! items are in, and its blocks are merged in item order, so the film (whose sums are f64, and
-//! f64 addition is not associative) is the same bit for bit for any thread count or timing,
-//! and only ever holds complete passes.
+//! items are in: its blocks are added in item order into a film of its own that starts from
+//! zero, and that pass film goes to the render's sums ([`RenderSums`](super::RenderSums)),
+//! which fold passes in pass order. The sums (f64, and f64 addition is not associative) are
+//! therefore the same bit for bit for any thread count or timing, and for any split of the
+//! passes between processes; they only ever hold complete passes.
 //!
 //! Threads take items up to one pass ahead of the first unmerged one ([`PassGate`]): a thread
 //! that finishes its last tile of a pass starts on the next pass while the others finish
@@ -17,9 +19,11 @@ use std::time::Duration;
 
 use crate::film::{Film, ImageBlock};
 
-/// Collects the blocks of a render and merges complete passes into the film.
+/// Collects the blocks of a render and hands on complete passes.
 pub(super) struct PassMerger {
     blocks: Vec<Option<ImageBlock>>,
+    /// A cleared film of the render's size and layers: each pass starts as a copy.
+    template: Film,
     /// Per pass: one past its last item, and the samples per pixel once merged.
     pass_ends: Vec<(usize, u32)>,
     /// The first pass not merged yet.
@@ -31,9 +35,12 @@ pub(super) struct PassMerger {
 }
 
 impl PassMerger {
-    pub fn new(items: usize, pass_ends: Vec<(usize, u32)>) -> Self {
+    pub fn new(items: usize, pass_ends: Vec<(usize, u32)>, template: &Film) -> Self {
+        let mut template = template.clone();
+        template.clear();
         PassMerger {
             blocks: (0..items).map(|_| None).collect(),
+            template,
             pass_ends,
             pass: 0,
             merged: 0,
@@ -41,23 +48,31 @@ impl PassMerger {
         }
     }
 
-    /// Takes item `i`'s block and merges every pass that is now complete; returns the number
-    /// of items merged so far.
-    pub fn add(&mut self, i: usize, block: ImageBlock, film: &mut Film) -> usize {
+    /// Takes item `i`'s block and hands every pass that is now complete to `pass_done`, with
+    /// the samples per pixel it ends at; returns the number of items merged so far.
+    pub fn add(
+        &mut self,
+        i: usize,
+        block: ImageBlock,
+        mut pass_done: impl FnMut(u32, Film),
+    ) -> usize {
         self.blocks[i] = Some(block);
         while let Some(&(end, last)) = self.pass_ends.get(self.pass) {
             if self.blocks[self.merged..end].iter().any(Option::is_none) {
                 break;
             }
+            let mut film = self.template.clone();
             for b in self.blocks[self.merged..end].iter_mut() {
                 film.merge(&b.take().expect("checked above"));
             }
+            pass_done(last, film);
             (self.merged, self.spp_done, self.pass) = (end, last, self.pass + 1);
         }
         self.merged
     }
 
     /// Samples per pixel in the film: those of the complete passes merged.
+    #[cfg(test)]
     pub fn spp_done(&self) -> u32 {
         self.spp_done
     }
@@ -121,17 +136,20 @@ mod tests {
     fn film_after(order: [usize; 4]) -> (f32, u32) {
         let filter = ReconstructionFilter::Box(BoxFilter::new());
         let mut film = Film::new(1, 1, filter).expect("valid film");
-        let mut m = PassMerger::new(4, vec![(3, 1), (4, 2)]);
+        let mut m = PassMerger::new(4, vec![(3, 1), (4, 2)], &film);
         let mut bs: Vec<Option<ImageBlock>> = blocks(&filter).into_iter().map(Some).collect();
         for i in order {
-            m.add(i, bs[i].take().expect("each item once"), &mut film);
+            m.add(i, bs[i].take().expect("each item once"), |_, p| {
+                film.accumulate(&p).expect("same size")
+            });
         }
         (film.develop().data[0], m.spp_done())
     }
 
     #[test]
     fn any_arrival_order_gives_the_in_order_film() {
-        // in item order: ((1e30 + 1) − 1e30 + 2) / 4 = 0.5 (the 1 is lost to rounding)
+        // passes from zero, in item order: (((1e30 + 1) − 1e30) + 2) / 4 = 0.5 (the 1 is lost
+        // to rounding)
         assert_eq!(film_after([0, 1, 2, 3]), (0.5, 2));
         // merged as they arrived, these would give 0.75
         for order in [[2, 0, 1, 3], [3, 2, 1, 0], [1, 2, 3, 0]] {
@@ -143,17 +161,22 @@ mod tests {
     fn only_complete_passes_are_merged() {
         let filter = ReconstructionFilter::Box(BoxFilter::new());
         let mut f = Film::new(1, 1, filter).expect("valid film");
-        let mut m = PassMerger::new(4, vec![(2, 1), (4, 2)]);
+        let mut m = PassMerger::new(4, vec![(2, 1), (4, 2)], &f);
         let mut b: Vec<Option<ImageBlock>> = blocks(&filter).into_iter().map(Some).collect();
+        let mut add = |m: &mut PassMerger, i: usize, f: &mut Film| {
+            m.add(i, b[i].take().unwrap(), |_, p| f.accumulate(&p).expect("same size"))
+        };
         // items 2 (second pass) and 1: the first pass is not complete, nothing is merged
-        assert_eq!(m.add(2, b[2].take().unwrap(), &mut f), 0);
-        assert_eq!(m.add(1, b[1].take().unwrap(), &mut f), 0);
+        assert_eq!(add(&mut m, 2, &mut f), 0);
+        assert_eq!(add(&mut m, 1, &mut f), 0);
         assert_eq!((m.spp_done(), f.develop().data[0]), (0, 0.0));
         // item 0 completes the first pass: (1e30 + 1) / 2
-        assert_eq!(m.add(0, b[0].take().unwrap(), &mut f), 2);
+        assert_eq!(add(&mut m, 0, &mut f), 2);
         assert_eq!((m.spp_done(), f.develop().data[0]), (1, 5e29));
-        assert_eq!(m.add(3, b[3].take().unwrap(), &mut f), 4);
-        assert_eq!((m.spp_done(), f.develop().data[0]), (2, 0.5));
+        // the second pass from zero, −1e30 + 2 = −1e30, added to the first: 0 (merged into the
+        // film block by block it would be ((1e30 + 1) − 1e30 + 2) / 4 = 0.5)
+        assert_eq!(add(&mut m, 3, &mut f), 4);
+        assert_eq!((m.spp_done(), f.develop().data[0]), (2, 0.0));
     }
 
     #[test]

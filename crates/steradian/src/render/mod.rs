@@ -10,6 +10,14 @@
 //! the image is bit-for-bit the same for any thread count. `driver.rs` ties these together;
 //! `measure.rs` reduces a film to one reading. The particle tracer renders whole-film passes of
 //! light paths instead (`particles.rs`), with the same guarantees.
+//!
+//! A render's result is its raw sums (`sums.rs`): each pass summed from zero, the passes folded
+//! in order. A render may cover only a range of the passes ([`RenderOptions::range`]) or continue
+//! sums from a checkpoint ([`RenderOptions::resume`]); ranges rendered anywhere and joined in
+//! order ([`RenderSums::append`]) are the whole render bit for bit, which is what checkpoints
+//! and distributed renders rest on. Splitting the passes this way costs a single-process render
+//! one film-sized addition per pass (cornell at 256×256, 64 spp: within the noise of its render
+//! time, `benches/results/2026-12-06-intel-xeon.md`).
 
 mod block;
 mod driver;
@@ -17,12 +25,16 @@ mod measure;
 mod merge;
 mod options;
 mod particles;
+mod quantity;
 mod schedule;
+mod sums;
 
 pub use block::MAX_AOV_LAYERS;
-pub use driver::render;
+pub use driver::{pass_bounds, plan, render, RenderPlan};
 pub use measure::{measure, Measurement};
-pub use options::{PixelQuantity, Progress, RenderError, RenderOptions, RenderOutput};
+pub use options::{Progress, RenderError, RenderOptions, RenderOutput};
+pub use quantity::PixelQuantity;
+pub use sums::{digest_inputs, RenderSums, SumsError, SumsHeader};
 
 use crate::integrator::Integrator;
 use crate::scene::Scene;
@@ -35,4 +47,8 @@ pub struct Job {
     /// What the scene's loader warned about, one located line each
     /// (`scene.xml:3:7: warning: …`): the scene renders as written; front ends print them.
     pub warnings: Vec<String>,
+    /// The files the scene was read from (the scene file, its includes, meshes, images), in
+    /// the order first read: what a distributed render ships, and what a checkpoint's scene
+    /// digest covers. Empty for a scene built in code.
+    pub inputs: Vec<std::path::PathBuf>,
 }

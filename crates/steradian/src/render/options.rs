@@ -5,6 +5,8 @@ use std::fmt;
 use std::sync::atomic::AtomicBool;
 use std::time::Duration;
 
+use super::quantity::PixelQuantity;
+use super::sums::{RenderSums, SumsError, SumsHeader};
 use super::Job;
 use crate::film::{Film, Image};
 use crate::integrator::Pilot;
@@ -18,41 +20,6 @@ pub struct Progress {
     pub samples_done: u64,
     pub samples_total: u64,
     pub elapsed: Duration,
-}
-
-/// What each pixel holds.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub enum PixelQuantity {
-    /// What the sensor measures (radiance for cameras, the meter's quantity for meters).
-    #[default]
-    Sensor,
-    /// The irradiance (W/m²) on the surface point each camera pixel sees, on the side facing
-    /// the camera (0 where the ray escapes): an irradiance map.
-    SurfaceIrradiance,
-    /// The same as illuminance (lx): 683 lm/W × the luminance of the irradiance (see
-    /// [`Image::to_illuminance`]).
-    SurfaceIlluminance,
-}
-
-impl PixelQuantity {
-    /// The names the command line and Python take, in order: `radiance` (what the sensor
-    /// measures), `irradiance`, `illuminance`.
-    pub const NAMES: [&'static str; 3] = ["radiance", "irradiance", "illuminance"];
-
-    /// The quantity of one of [`PixelQuantity::NAMES`].
-    pub fn from_name(name: &str) -> Option<PixelQuantity> {
-        match name {
-            "radiance" => Some(PixelQuantity::Sensor),
-            "irradiance" => Some(PixelQuantity::SurfaceIrradiance),
-            "illuminance" => Some(PixelQuantity::SurfaceIlluminance),
-            _ => None,
-        }
-    }
-
-    /// True for the maps of what a camera sees (irradiance, illuminance).
-    pub fn is_surface_map(self) -> bool {
-        self != PixelQuantity::Sensor
-    }
 }
 
 /// Options of one render.
@@ -75,6 +42,19 @@ pub struct RenderOptions<'a> {
     pub quantity: PixelQuantity,
     /// Called from worker threads as tiles finish.
     pub progress: Option<&'a (dyn Fn(Progress) + Sync)>,
+    /// Render only the samples `first..end` of every pixel (both on the render's pass
+    /// boundaries, [`pass_bounds`](super::pass_bounds)); `None` = all (or, resuming, the rest).
+    pub range: Option<(u32, u32)>,
+    /// `path`'s branch count when the scene leaves it to the pilot: the count a first range
+    /// or an earlier process chose, so that every range renders the same paths.
+    pub branches: Option<u32>,
+    /// Sums to continue (a checkpoint): the render adds its passes to them, starting where
+    /// they end, and returns the whole.
+    pub resume: Option<RenderSums>,
+    /// Called on the merging thread with the sums so far after each pass is added.
+    pub on_pass: Option<&'a (dyn Fn(&RenderSums) + Sync)>,
+    /// Written into the sums' header ([`SumsHeader::scene_digest`](super::SumsHeader)).
+    pub scene_digest: u64,
 }
 
 impl RenderOptions<'_> {
@@ -94,7 +74,9 @@ impl RenderOptions<'_> {
 /// The result of a render.
 #[derive(Debug)]
 pub struct RenderOutput {
-    pub film: Film,
+    /// The raw sums: of the whole render so far for a render from sample 0 (resumed or not),
+    /// else of the range rendered.
+    pub sums: RenderSums,
     /// What the film's pixels hold before [`RenderOutput::image`] converts them.
     pub quantity: PixelQuantity,
     /// Paths continued from each camera ray's first hit (`path` only).
@@ -104,6 +86,8 @@ pub struct RenderOutput {
     /// Samples per pixel actually in the film.
     pub spp: u32,
     pub spp_requested: u32,
+    /// Samples per pixel rendered by this call (less than `spp` when it resumed sums).
+    pub spp_rendered: u32,
     /// Samples whose value was NaN or infinite: dropped, never splatted.
     pub dropped_samples: u64,
     pub elapsed: Duration,
@@ -111,34 +95,38 @@ pub struct RenderOutput {
 }
 
 impl RenderOutput {
+    /// The film: the sums' passes folded.
+    pub fn film(&self) -> &Film {
+        self.sums.film()
+    }
+
     /// Samples in the film (pixels × spp).
     pub fn samples(&self) -> u64 {
-        self.film.width as u64 * self.film.height as u64 * self.spp as u64
+        self.film().width as u64 * self.film().height as u64 * self.spp as u64
+    }
+
+    /// Samples rendered by this call (pixels × spp_rendered).
+    pub fn samples_rendered(&self) -> u64 {
+        self.film().width as u64 * self.film().height as u64 * self.spp_rendered as u64
     }
 
     /// The image in the unit of the requested quantity (illuminance converted from the
     /// film's irradiance).
     pub fn image(&self) -> Image {
-        self.in_quantity(self.film.develop())
+        self.sums.image()
     }
 
     /// The standard error of each pixel of [`RenderOutput::image`], same unit.
     pub fn stderr_image(&self) -> Image {
-        self.in_quantity(self.film.develop_stderr())
+        self.sums.stderr_image()
     }
 
     /// The AOV layers the integrator wrote (`moment`'s), developed, each with its name and
     /// channel names.
     pub fn aov_images(&self) -> Vec<(crate::film::AovLayer, Image)> {
-        let layers = self.film.aov_layers();
-        layers.iter().enumerate().map(|(k, l)| (l.clone(), self.film.develop_aov(k))).collect()
-    }
-
-    fn in_quantity(&self, image: Image) -> Image {
-        match self.quantity {
-            PixelQuantity::SurfaceIlluminance => image.to_illuminance(),
-            PixelQuantity::Sensor | PixelQuantity::SurfaceIrradiance => image,
-        }
+        let film = self.film();
+        let layers = film.aov_layers();
+        layers.iter().enumerate().map(|(k, l)| (l.clone(), film.develop_aov(k))).collect()
     }
 }
 
@@ -158,6 +146,14 @@ pub enum RenderError {
         reason: &'static str,
     },
     ThreadPool(String),
+    /// A range that does not start and end on pass boundaries: the range and the boundaries.
+    BadRange {
+        first: u32,
+        end: u32,
+        bounds: Vec<u32>,
+    },
+    /// Sums to resume that do not belong to this render.
+    Resume(SumsError),
 }
 
 impl fmt::Display for RenderError {
@@ -179,6 +175,16 @@ impl fmt::Display for RenderError {
             ),
             RenderError::BadOption { option, reason } => write!(f, "{option} {reason}"),
             RenderError::ThreadPool(e) => write!(f, "could not start worker threads: {e}"),
+            RenderError::BadRange { first, end, bounds } => {
+                let shown: Vec<String> = bounds.iter().take(40).map(u32::to_string).collect();
+                let more = if bounds.len() > 40 { ", …" } else { "" };
+                write!(
+                    f,
+                    "the sample range {first}..{end} does not fall on this render's pass boundaries ({}{more})",
+                    shown.join(", ")
+                )
+            }
+            RenderError::Resume(e) => write!(f, "cannot resume: the sums {e}"),
         }
     }
 }
@@ -202,6 +208,22 @@ pub(super) struct Plan<'a> {
 }
 
 impl<'a> Plan<'a> {
+    /// The header of this render's sums, with its branch count (0: not `path`).
+    pub fn header(&self, branches: u32, sensor: usize, scene_digest: u64) -> SumsHeader {
+        SumsHeader {
+            width: self.film.width,
+            height: self.film.height,
+            aov_layers: self.film.aov_layers().len() as u32,
+            spp: self.spp,
+            seed: self.sampler.seed,
+            sampler: self.sampler.kind,
+            branches,
+            quantity: self.quantity,
+            sensor: sensor as u32,
+            scene_digest,
+        }
+    }
+
     pub fn new(job: &'a Job, opts: &RenderOptions) -> Result<Plan<'a>, RenderError> {
         opts.validate()?;
         let sensors = &job.scene.sensors;

@@ -9,42 +9,44 @@
 //! any thread count and a stopped render holds only complete passes.
 
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc;
-use std::time::Instant;
 
 use glam::UVec2;
 
-use super::options::{Plan, Progress, RenderOptions, RenderOutput};
+use super::options::Plan;
 use super::Job;
 use crate::film::{Film, SplatBlock};
 use crate::integrator::ParticleTracer;
 
-/// Renders `plan` with the particle tracer `tracer` on `threads` worker threads.
+/// Renders the passes `first..end` of `plan` with the particle tracer `tracer` on `threads`
+/// worker threads, handing each finished pass, in order, to `pass_done` (as a film holding
+/// one unit-weight sample per pixel); `report` counts light paths as passes finish.
 pub(super) fn render_particles(
     job: &Job,
     tracer: &ParticleTracer,
-    plan: Plan,
-    opts: &RenderOptions,
+    plan: &Plan,
+    (first, end): (u32, u32),
     threads: usize,
-) -> RenderOutput {
-    let start = Instant::now();
-    let (scene, sensor, sampler, spp) = (&job.scene, plan.sensor, plan.sampler, plan.spp);
-    let mut film: Film = plan.film;
-    let (width, height, filter) = (film.width, film.height, film.filter);
-    let cancelled = || opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    cancelled: &(dyn Fn() -> bool + Sync),
+    report: &(dyn Fn(u64) + Sync),
+    pass_done: &mut dyn FnMut(u32, Film),
+) {
+    let (scene, sensor, sampler) = (&job.scene, plan.sensor, plan.sampler);
+    let mut template = plan.film.clone();
+    template.clear();
+    let (width, height, filter) = (template.width, template.height, template.filter);
     let paths_per_pass = width as u64 * height as u64;
-    let samples_total = paths_per_pass * spp as u64;
-    let (next, samples_done) = (AtomicUsize::new(0), AtomicU64::new(0));
-    let mut merged = 0u32;
+    let next = AtomicUsize::new(first as usize);
+    let mut merged = first;
     std::thread::scope(|scope| {
         let (tx, rx) = mpsc::channel::<(u32, SplatBlock)>();
         for _ in 0..threads.max(1) {
             let tx = tx.clone();
-            let (next, samples_done, cancelled) = (&next, &samples_done, &cancelled);
+            let next = &next;
             scope.spawn(move || loop {
                 let pass = next.fetch_add(1, Ordering::Relaxed) as u32;
-                if pass >= spp || cancelled() {
+                if pass >= end || cancelled() {
                     break;
                 }
                 let mut block = SplatBlock::new(width, height, filter);
@@ -57,37 +59,23 @@ pub(super) fn render_particles(
                         tracer.trace(scene, sensor, &mut s, &mut block);
                     }
                 }
-                let done =
-                    samples_done.fetch_add(paths_per_pass, Ordering::Relaxed) + paths_per_pass;
-                if let Some(cb) = opts.progress {
-                    cb(Progress { samples_done: done, samples_total, elapsed: start.elapsed() });
-                }
+                report(paths_per_pass);
                 if tx.send((pass, block)).is_err() {
                     break;
                 }
             });
         }
         drop(tx);
-        // passes join the film in order; later ones wait here for the earlier
+        // passes join the sums in order; later ones wait here for the earlier
         let mut waiting = BTreeMap::new();
         for (pass, block) in rx {
             waiting.insert(pass, block);
             while let Some(block) = waiting.remove(&merged) {
+                let mut film = template.clone();
                 film.add_pass(&block);
                 merged += 1;
+                pass_done(merged, film);
             }
         }
     });
-    let dropped = film.dropped();
-    RenderOutput {
-        film,
-        quantity: plan.quantity,
-        branches: None,
-        pilot: None,
-        spp: merged,
-        spp_requested: spp,
-        dropped_samples: dropped,
-        elapsed: start.elapsed(),
-        interrupted: merged < spp,
-    }
 }

@@ -29,7 +29,7 @@ pub fn furnace(le: Spectrum, rho: Spectrum, tracer: PathTracer) -> Job {
         ..Default::default()
     })
     .expect("the furnace is a valid scene");
-    Job { scene, integrator: Integrator::Path(tracer), warnings: Vec::new() }
+    Job { scene, integrator: Integrator::Path(tracer), warnings: Vec::new(), inputs: Vec::new() }
 }
 
 /// The radiance inside the [`furnace`]: L = Le + ρ·L' where L' is what the next vertex sees
@@ -71,7 +71,7 @@ pub fn lit_plane(
         ..Default::default()
     })
     .expect("the lit plane is a valid scene");
-    Job { scene, integrator: Integrator::Path(tracer), warnings: Vec::new() }
+    Job { scene, integrator: Integrator::Path(tracer), warnings: Vec::new(), inputs: Vec::new() }
 }
 
 /// The radiance the [`lit_plane`] reflects at its point `q` (z = 0), in any direction above

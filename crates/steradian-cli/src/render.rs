@@ -6,6 +6,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use clap::Args;
+
+use crate::checkpoint;
 use indicatif::{ProgressBar, ProgressStyle};
 use steradian::film::false_color_png;
 use steradian::film::{write_exr, write_exr_channels, write_png, ComponentFormat, ExrLayer};
@@ -56,6 +58,20 @@ pub struct RenderArgs {
     /// Do not show the progress bar.
     #[arg(long)]
     quiet: bool,
+    /// Keep the finished passes' sums in FILE (written atomically every
+    /// --checkpoint-interval seconds and at Ctrl-C, deleted when the image is written), so that
+    /// a killed render can go on with --resume FILE.
+    #[arg(long, value_name = "FILE")]
+    checkpoint: Option<PathBuf>,
+    /// Seconds between checkpoint writes (0: after every pass).
+    #[arg(long, value_name = "SECONDS", default_value_t = 60.0)]
+    checkpoint_interval: f64,
+    /// Continue the render whose checkpoint is FILE (same scene, spp, seed, sensor and
+    /// resolution, the same steradian version); it goes on checkpointing to FILE unless
+    /// --checkpoint names another. The image is the one an uninterrupted render gives, bit
+    /// for bit.
+    #[arg(long, value_name = "FILE")]
+    resume: Option<PathBuf>,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -133,6 +149,14 @@ pub fn parse_defines(defines: &[String]) -> Result<Vec<(String, String)>, String
 pub fn run(args: RenderArgs) -> Result<(), CliError> {
     // Check the arguments before the (possibly slow) scene load.
     let defines = parse_defines(&args.defines)?;
+    if !(args.checkpoint_interval.is_finite() && args.checkpoint_interval >= 0.0) {
+        return Err("--checkpoint-interval must be a number of seconds, at least 0".into());
+    }
+    let resumed = match &args.resume {
+        Some(path) => Some(checkpoint::read(path)?),
+        None => None,
+    };
+    let checkpoint_path = args.checkpoint.clone().or_else(|| args.resume.clone());
     RenderOptions { spp: args.spp, threads: args.threads, ..Default::default() }.validate()?;
     let output = match (&args.output, &args.scene) {
         (Some(o), _) => o.clone(),
@@ -155,6 +179,19 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         )?,
     };
     let load_time = load_start.elapsed();
+    // what a checkpoint must match: the contents of every file the scene read, and the -D
+    // overrides
+    let scene_digest = if checkpoint_path.is_some() {
+        let overrides: Vec<String> = defines.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let mut extra: Vec<&str> = overrides.iter().map(String::as_str).collect();
+        if args.scene.is_none() {
+            extra.push(BUILTIN_SCENE);
+        }
+        steradian::render::digest_inputs(&scene.inputs, &extra)
+            .map_err(|e| format!("cannot read the scene's files for the checkpoint: {e}"))?
+    } else {
+        0
+    };
     for w in &scene.warnings {
         eprintln!("{w}");
     }
@@ -195,6 +232,14 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             p.samples_done as f64 / p.elapsed.as_secs_f64().max(1e-9) / 1e6
         ));
     };
+    let writer = checkpoint_path
+        .as_ref()
+        .map(|p| checkpoint::Writer::new(p, Duration::from_secs_f64(args.checkpoint_interval)));
+    let on_pass = |sums: &steradian::render::RenderSums| {
+        if let Some(w) = &writer {
+            w.maybe_write(sums);
+        }
+    };
     let opts = RenderOptions {
         spp: args.spp,
         seed: args.seed,
@@ -211,9 +256,32 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             Quantity::Irradiance => PixelQuantity::SurfaceIrradiance,
             Quantity::Illuminance => PixelQuantity::SurfaceIlluminance,
         },
+        range: None,
+        branches: None,
+        resume: resumed,
+        on_pass: writer.as_ref().map(|_| &on_pass as &(dyn Fn(&_) + Sync)),
+        scene_digest,
     };
-    let out = render(&scene, &opts)?;
+    let out = render(&scene, &opts).map_err(|e| match (e, &args.resume) {
+        (RenderError::Resume(e), Some(path)) => {
+            CliError::Other(format!("cannot resume from {}: the checkpoint {e}", path.display()))
+        }
+        (e, _) => e.into(),
+    })?;
     bar.finish_and_clear();
+    if let Some(w) = &writer {
+        w.warn_if_failed();
+        if out.interrupted {
+            w.write(&out.sums)?;
+            eprintln!(
+                "checkpoint: {} holds {} of {} samples per pixel; continue with --resume {}",
+                w.path().display(),
+                out.spp,
+                out.spp_requested,
+                w.path().display()
+            );
+        }
+    }
 
     let write_start = Instant::now();
     let (image, error) = (out.image(), out.stderr_image());
@@ -252,20 +320,30 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     // the work counted as it is done: a camera sample of `path` with n branches traces n
     // paths from its first hit; the particle tracer's samples are light paths
     let per_second = |n: u64| n as f64 / secs.max(1e-9) / 1e6;
+    let done = out.samples_rendered();
     let rate = match (&scene.integrator, out.branches) {
         (Integrator::ParticleTracer(_), _) => {
-            format!("{:.2} M light paths/s", per_second(out.samples()))
+            format!("{:.2} M light paths/s", per_second(done))
         }
         (_, Some(n)) if n > 1 => format!(
             "{:.2} Msamples/s, {:.2} Mpaths/s",
-            per_second(out.samples()),
-            per_second(out.samples() * n as u64)
+            per_second(done),
+            per_second(done * n as u64)
         ),
-        _ => format!("{:.2} Msamples/s", per_second(out.samples())),
+        _ => format!("{:.2} Msamples/s", per_second(done)),
+    };
+    let resumed_note = if out.spp_rendered < out.spp {
+        format!(" ({} resumed from the checkpoint)", out.spp - out.spp_rendered)
+    } else {
+        String::new()
     };
     println!(
-        "rendered {}x{} at {} spp in {:.2} s ({rate}), {} dropped NaN/Inf samples",
-        out.film.width, out.film.height, out.spp, secs, out.dropped_samples
+        "rendered {}x{} at {} spp{resumed_note} in {:.2} s ({rate}), {} dropped NaN/Inf samples",
+        out.film().width,
+        out.film().height,
+        out.spp,
+        secs,
+        out.dropped_samples
     );
     match (out.branches, out.pilot) {
         (Some(n), Some(p)) => println!(
@@ -286,6 +364,10 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         write_time.as_secs_f64()
     );
     println!("wrote {} and {}", output.display(), png.display());
+    if let (Some(w), false) = (&writer, out.interrupted) {
+        // the image holds every sample: the checkpoint has done its work
+        w.remove();
+    }
     Ok(())
 }
 

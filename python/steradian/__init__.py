@@ -9,7 +9,9 @@ the EXR the ``steradian render`` command writes for the same scene, spp and seed
 >>> image = scene.render(spp=16)          # (H, W, 3) float32, W/(m²·sr)
 >>> steradian.write_exr("cornell.exr", image)
 
-``steradian.radiometry`` holds the closed-form formulas (solid angles, irradiance).
+``steradian.radiometry`` holds the closed-form formulas (solid angles, irradiance);
+``steradian.distributed`` renders on a Ray cluster (``pip install ray``), bit for bit the image
+of ``Scene.render``.
 """
 
 import sys as _sys
@@ -18,12 +20,14 @@ from ._steradian import (
     Measurement,
     Scene,
     SceneError,
+    Sums,
     __version__,
     load_file,
     load_string,
     radiometry,
     read_exr,
     write_exr,
+    write_png,
 )
 
 # `radiometry` is made by the extension module: register it so that
@@ -34,10 +38,12 @@ __all__ = [
     "Measurement",
     "Scene",
     "SceneError",
+    "Sums",
     "__version__",
     "load_file",
     "load_string",
     "radiometry",
     "read_exr",
     "write_exr",
+    "write_png",
 ]

@@ -40,7 +40,9 @@ pub fn render_error(e: RenderError) -> PyErr {
         | RenderError::NotACamera
         | RenderError::NotLight
         | RenderError::ParticlesNeedPinhole
-        | RenderError::BadOption { .. } => PyValueError::new_err(e.to_string()),
+        | RenderError::BadOption { .. }
+        | RenderError::BadRange { .. }
+        | RenderError::Resume(_) => PyValueError::new_err(e.to_string()),
     }
 }
 

@@ -14,6 +14,7 @@ mod errors;
 mod interrupt;
 mod radiometry;
 mod scene;
+mod sums;
 
 use std::path::PathBuf;
 
@@ -29,6 +30,15 @@ use crate::errors::{exr_error, SceneError};
 fn write_exr(py: Python<'_>, path: PathBuf, image: &Bound<'_, PyAny>) -> PyResult<()> {
     let image = from_array(py, image)?;
     py.allow_threads(|| steradian::film::write_exr(&path, &image)).map_err(exr_error)
+}
+
+/// Writes `image`, an array-like of shape (H, W, 3), as an 8-bit sRGB PNG preview (values
+/// clamped to [0, 1] after the sRGB transfer curve), as `steradian render` writes its PNG.
+#[pyfunction]
+#[pyo3(signature = (path, image))]
+fn write_png(py: Python<'_>, path: PathBuf, image: &Bound<'_, PyAny>) -> PyResult<()> {
+    let image = from_array(py, image)?;
+    py.allow_threads(|| steradian::film::write_png(&path, &image, 1.0)).map_err(exr_error)
 }
 
 /// Reads the R, G, B channels of an OpenEXR file (float16, float32 or uint32 samples, any
@@ -47,10 +57,12 @@ fn _steradian(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<scene::Measurement>()?;
+    m.add_class::<sums::Sums>()?;
     m.add_function(wrap_pyfunction!(scene::load_file, m)?)?;
     m.add_function(wrap_pyfunction!(scene::load_string, m)?)?;
     m.add_function(wrap_pyfunction!(write_exr, m)?)?;
     m.add_function(wrap_pyfunction!(read_exr, m)?)?;
+    m.add_function(wrap_pyfunction!(write_png, m)?)?;
     let radiometry = PyModule::new(py, "radiometry")?;
     radiometry::register(&radiometry)?;
     m.add_submodule(&radiometry)?;

@@ -12,6 +12,7 @@ use steradian::sensor::Quantity;
 use crate::array::{to_array, to_channels_array};
 use crate::errors::{render_error, scene_error};
 use crate::interrupt::run_interruptible;
+use crate::sums::Sums;
 
 /// `**defaults` as the loader's `-D name=value` pairs: booleans as `true`/`false`, anything
 /// else as `str(value)`.
@@ -75,6 +76,14 @@ fn warn_all(py: Python<'_>, job: &Job) -> PyResult<()> {
         PyErr::warn(py, &py.get_type::<pyo3::exceptions::PyUserWarning>(), &text, 1)?;
     }
     Ok(())
+}
+
+fn pixel_quantity(name: &str) -> PyResult<PixelQuantity> {
+    PixelQuantity::from_name(name).ok_or_else(|| {
+        PyValueError::new_err(format!(
+            "quantity must be 'radiance', 'irradiance' or 'illuminance', not '{name}'"
+        ))
+    })
 }
 
 /// A loaded scene: geometry, materials, lights, sensors and integrator. Immutable; safe to
@@ -148,11 +157,7 @@ impl Scene {
         threads: Option<usize>,
         progress: Option<Py<PyAny>>,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let Some(pixel_quantity) = PixelQuantity::from_name(quantity) else {
-            return Err(PyValueError::new_err(format!(
-                "quantity must be 'radiance', 'irradiance' or 'illuminance', not '{quantity}'"
-            )));
-        };
+        let pixel_quantity = pixel_quantity(quantity)?;
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
         let out = run_interruptible(py, progress, |cancel, report| {
@@ -165,6 +170,7 @@ impl Scene {
                 cancel: Some(cancel),
                 progress: Some(report),
                 quantity: pixel_quantity,
+                ..Default::default()
             };
             render(scene, &opts)
         })?
@@ -210,6 +216,142 @@ impl Scene {
         })?
         .map_err(render_error)?;
         Ok(Measurement { inner: m })
+    }
+
+    /// What a render will do, without rendering: a dict with `spp`, `seed`, `width`,
+    /// `height`, `pass_bounds` (the samples per pixel at which its passes end, from 0 to
+    /// `spp`: `render_range` ranges start and end on them) and `branches` (`path`'s branch
+    /// count, chosen by its pilot, which this runs, when the scene leaves it open; None for
+    /// other integrators). Same options as `render`.
+    #[pyo3(
+        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None)"
+    )]
+    fn plan<'py>(
+        &self,
+        py: Python<'py>,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        sensor: Option<SensorArg>,
+        quantity: &str,
+        threads: Option<usize>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let quantity = pixel_quantity(quantity)?;
+        let sensor = self.sensor(sensor)?;
+        let scene = &*self.inner;
+        let opts = RenderOptions {
+            spp,
+            seed,
+            threads,
+            sensor: Some(sensor),
+            quantity,
+            ..Default::default()
+        };
+        let plan =
+            py.allow_threads(|| steradian::render::plan(scene, &opts)).map_err(render_error)?;
+        let d = PyDict::new(py);
+        let h = &plan.header;
+        d.set_item("spp", h.spp)?;
+        d.set_item("seed", h.seed)?;
+        d.set_item("width", h.width)?;
+        d.set_item("height", h.height)?;
+        d.set_item("pass_bounds", plan.pass_bounds)?;
+        d.set_item("branches", (h.branches > 0).then_some(h.branches))?;
+        Ok(d)
+    }
+
+    /// Renders samples `first .. first + count` of every pixel of a render of `spp` samples
+    /// and returns their raw sums (`Sums`), not an image. `first` and `first + count` must be
+    /// pass boundaries (`plan()["pass_bounds"]`). Sums of consecutive ranges, joined in range
+    /// order with `Sums.append`, hold bit for bit what one render of all of them holds, on any
+    /// machine: this is how distributed renders and resumed renders add up.
+    ///
+    /// - `branches`: `path`'s branch count (give `plan()["branches"]`, so that every range
+    ///   renders the same paths without running the pilot again); None runs the pilot.
+    /// - `resume`: sums to continue (`first` must be where they end); the result holds both.
+    /// - `scene_digest`: a number recorded in the sums' header and compared when sums are
+    ///   joined or resumed (e.g. a digest of the scene's files), 0 by default.
+    /// - the other options as in `render`.
+    #[pyo3(
+        signature = (first, count, spp=None, seed=Some(0), sensor=None, *, quantity="radiance", branches=None, resume=None, scene_digest=0, threads=None, progress=None),
+        text_signature = "(self, /, first, count, spp=None, seed=0, sensor=None, *, quantity='radiance', branches=None, resume=None, scene_digest=0, threads=None, progress=None)"
+    )]
+    fn render_range(
+        &self,
+        py: Python<'_>,
+        first: u32,
+        count: u32,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        sensor: Option<SensorArg>,
+        quantity: &str,
+        branches: Option<u32>,
+        resume: Option<PyRef<'_, Sums>>,
+        scene_digest: u64,
+        threads: Option<usize>,
+        progress: Option<Py<PyAny>>,
+    ) -> PyResult<Sums> {
+        let quantity = pixel_quantity(quantity)?;
+        let sensor = self.sensor(sensor)?;
+        let scene = &*self.inner;
+        let end = first
+            .checked_add(count)
+            .ok_or_else(|| PyValueError::new_err("first + count overflows"))?;
+        let resume = resume.map(|r| r.inner.clone());
+        let out = run_interruptible(py, progress, |cancel, report| {
+            let opts = RenderOptions {
+                spp,
+                seed,
+                threads,
+                sensor: Some(sensor),
+                cancel: Some(cancel),
+                progress: Some(report),
+                quantity,
+                range: Some((first, end)),
+                branches,
+                resume,
+                scene_digest,
+                ..Default::default()
+            };
+            render(scene, &opts)
+        })?
+        .map_err(render_error)?;
+        Ok(Sums { inner: out.sums })
+    }
+
+    /// The image of `sums` (a prefix of a render of this scene, or any range) as `render`
+    /// returns it: (H, W, 3) float32, or (H, W, 3 + k) with the `moment`/`aov` layers.
+    fn develop<'py>(&self, py: Python<'py>, sums: PyRef<'_, Sums>) -> PyResult<Bound<'py, PyAny>> {
+        let s = &sums.inner;
+        let sensor = self.inner.scene.sensors.get(s.header.sensor as usize);
+        let layers = match sensor {
+            Some(sn) if !sn.is_meter() && s.header.aov_layers > 0 => {
+                self.inner.integrator.aov_layers()
+            }
+            _ => Vec::new(),
+        };
+        if layers.len() != s.header.aov_layers as usize {
+            return Err(PyValueError::new_err(format!(
+                "the sums hold {} AOV layers, this scene's integrator writes {}",
+                s.header.aov_layers,
+                layers.len()
+            )));
+        }
+        let image = s.image();
+        if layers.is_empty() {
+            return to_array(py, &image);
+        }
+        let film = s.film();
+        let aovs: Vec<_> =
+            layers.into_iter().enumerate().map(|(k, l)| (l, film.develop_aov(k))).collect();
+        to_channels_array(py, &image, &aovs)
+    }
+
+    /// The files the scene was read from (the scene file, its includes, meshes, images), in
+    /// the order first read; empty for `load_string` scenes without files.
+    #[getter]
+    fn files(&self) -> Vec<String> {
+        self.inner.inputs.iter().map(|p| p.display().to_string()).collect()
     }
 
     /// The `id` of each sensor, in scene order (`""` for a sensor without one).

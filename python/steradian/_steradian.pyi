@@ -69,6 +69,8 @@ class Scene:
         quantity: Literal["radiance", "irradiance", "illuminance"] = "radiance",
         threads: Optional[int] = None,
         progress: Optional[_Progress] = None,
+        checkpoint: Optional[_Path] = None,
+        checkpoint_interval: float = 60.0,
     ) -> npt.NDArray[np.float32]: ...
     def measure(
         self,

@@ -99,3 +99,30 @@ def test_files_lists_what_the_loader_read(cornell, tmp_path):
     )
     scene = steradian.load_file(tmp_path / "main.xml")
     assert [p.rsplit("/", 1)[-1] for p in scene.files] == ["main.xml", "part.xml", "tri.obj"]
+
+
+class Stop(Exception):
+    pass
+
+
+def test_a_stopped_render_resumes_from_its_checkpoint(cornell, tmp_path):
+    ck = tmp_path / "render.ck"
+    whole = cornell.render(SPP, SEED)
+    calls = []
+
+    def stop_early(done, total):
+        calls.append(done)
+        if done > 0:
+            raise Stop
+
+    with pytest.raises(Stop):
+        cornell.render(SPP * 8, SEED, progress=stop_early, checkpoint=ck, checkpoint_interval=0)
+    assert ck.is_file(), "the stopped render kept nothing"
+    kept = steradian.Sums.load(ck)
+    assert kept.is_prefix and 0 < kept.end < SPP * 8
+    with pytest.raises(ValueError, match="cannot resume from .*seed"):
+        cornell.render(SPP * 8, SEED + 1, checkpoint=ck)
+    again = cornell.render(SPP * 8, SEED, checkpoint=ck)
+    assert not ck.exists(), "a completed render deletes its checkpoint"
+    np.testing.assert_array_equal(bits(again), bits(cornell.render(SPP * 8, SEED)))
+    assert whole.shape == again.shape

@@ -3,10 +3,15 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use pyo3::exceptions::PyValueError;
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
-use steradian::render::{measure, render, Job, PixelQuantity, RenderOptions};
+use steradian::render::{
+    measure, render, Job, PixelQuantity, RenderError, RenderOptions, RenderSums,
+};
 use steradian::sensor::Quantity;
 
 use crate::array::{to_array, to_channels_array};
@@ -46,7 +51,7 @@ pub fn load_file(
         .allow_threads(|| steradian_mitsuba::load_file(&path, &defines))
         .map_err(|e| scene_error(py, &e))?;
     warn_all(py, &scene)?;
-    Ok(Scene { inner: Arc::new(scene), name: path.display().to_string() })
+    Ok(Scene { inner: Arc::new(scene), name: path.display().to_string(), defines, source: None })
 }
 
 /// Loads a scene from a Mitsuba 3 XML string. Keyword arguments override its `<default>`s.
@@ -66,7 +71,8 @@ pub fn load_string(
         })
         .map_err(|e| scene_error(py, &e))?;
     warn_all(py, &scene)?;
-    Ok(Scene { inner: Arc::new(scene), name: "<string>".into() })
+    let source = Some(xml.to_string());
+    Ok(Scene { inner: Arc::new(scene), name: "<string>".into(), defines, source })
 }
 
 /// Issues the loader's warnings as Python `UserWarning`s (one each, with its location).
@@ -92,6 +98,10 @@ fn pixel_quantity(name: &str) -> PyResult<PixelQuantity> {
 pub struct Scene {
     inner: Arc<Job>,
     name: String,
+    /// The `<default>` overrides it was loaded with, and its XML when given as a string: what
+    /// a checkpoint's scene digest covers beside the files.
+    defines: Vec<(String, String)>,
+    source: Option<String>,
 }
 
 /// A sensor given as its index or its `id`.
@@ -102,6 +112,15 @@ enum SensorArg {
 }
 
 impl Scene {
+    /// A digest of the scene's files, XML string and overrides (`digest_inputs`).
+    fn digest(&self) -> PyResult<u64> {
+        let overrides: Vec<String> = self.defines.iter().map(|(k, v)| format!("{k}={v}")).collect();
+        let mut extra: Vec<&str> = overrides.iter().map(String::as_str).collect();
+        extra.extend(self.source.as_deref());
+        steradian::render::digest_inputs(&self.inner.inputs, &extra)
+            .map_err(|e| PyOSError::new_err(format!("cannot read the scene's files: {e}")))
+    }
+
     fn sensor(&self, sensor: Option<SensorArg>) -> PyResult<usize> {
         let n = self.inner.scene.sensors.len();
         match sensor {
@@ -137,6 +156,12 @@ impl Scene {
     /// - `progress`: called as `progress(samples_done, samples_total)` on the calling thread
     ///   while rendering; an exception it raises stops the render and propagates.
     ///
+    /// - `checkpoint`: a file that keeps the finished passes' sums (written atomically every
+    ///   `checkpoint_interval` seconds and when the render is stopped); a render given a
+    ///   checkpoint that exists continues from it, and returns the uninterrupted render's image
+    ///   bit for bit. A checkpoint of another scene, spp, seed, sensor or resolution raises
+    ///   ValueError. The file is deleted when the render completes.
+    ///
     /// With a `moment` or `aov` integrator a radiance render of a camera returns shape
     /// (H, W, 3 + k): R, G, B and then the integrator's layers, as `mi.render` does; their
     /// names are `channel_names()`.
@@ -144,8 +169,8 @@ impl Scene {
     /// The GIL is released while rendering. Ctrl-C stops the render and raises
     /// `KeyboardInterrupt`.
     #[pyo3(
-        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None),
-        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None)"
+        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0)"
     )]
     fn render<'py>(
         &self,
@@ -156,10 +181,45 @@ impl Scene {
         quantity: &str,
         threads: Option<usize>,
         progress: Option<Py<PyAny>>,
+        checkpoint: Option<PathBuf>,
+        checkpoint_interval: f64,
     ) -> PyResult<Bound<'py, PyAny>> {
         let pixel_quantity = pixel_quantity(quantity)?;
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
+        if !(checkpoint_interval.is_finite() && checkpoint_interval >= 0.0) {
+            return Err(PyValueError::new_err("checkpoint_interval must be at least 0 seconds"));
+        }
+        let (resume, scene_digest) = match &checkpoint {
+            Some(path) => {
+                let resume = if path.exists() {
+                    let sums = RenderSums::load(path).map_err(PyValueError::new_err)?;
+                    if !sums.is_prefix() {
+                        return Err(PyValueError::new_err(format!(
+                            "{} does not hold a render from its start: not a checkpoint",
+                            path.display()
+                        )));
+                    }
+                    Some(sums)
+                } else {
+                    None
+                };
+                (resume, self.digest()?)
+            }
+            None => (None, 0),
+        };
+        let interval = Duration::from_secs_f64(checkpoint_interval);
+        let last_save = Mutex::new(Instant::now());
+        let save = |sums: &RenderSums| {
+            if let Some(path) = &checkpoint {
+                let mut last = last_save.lock().unwrap_or_else(|e| e.into_inner());
+                if last.elapsed() >= interval {
+                    // a failed write leaves the previous checkpoint; the render goes on
+                    let _ = sums.save(path);
+                    *last = Instant::now();
+                }
+            }
+        };
         let out = run_interruptible(py, progress, |cancel, report| {
             let opts = RenderOptions {
                 spp,
@@ -170,11 +230,33 @@ impl Scene {
                 cancel: Some(cancel),
                 progress: Some(report),
                 quantity: pixel_quantity,
+                resume,
+                on_pass: checkpoint.as_ref().map(|_| &save as &(dyn Fn(&RenderSums) + Sync)),
+                scene_digest,
                 ..Default::default()
             };
-            render(scene, &opts)
-        })?
-        .map_err(render_error)?;
+            let out = render(scene, &opts).map_err(|e| match (e, &checkpoint) {
+                (RenderError::Resume(e), Some(path)) => PyValueError::new_err(format!(
+                    "cannot resume from {}: the checkpoint {e}",
+                    path.display()
+                )),
+                (e, _) => render_error(e),
+            })?;
+            if let Some(path) = &checkpoint {
+                if out.interrupted {
+                    out.sums.save(path).map_err(|e| {
+                        PyOSError::new_err(format!(
+                            "cannot write checkpoint {}: {e}",
+                            path.display()
+                        ))
+                    })?;
+                } else {
+                    // the image holds every sample: the checkpoint has done its work
+                    let _ = std::fs::remove_file(path);
+                }
+            }
+            Ok::<_, PyErr>(out)
+        })??;
         let aovs = out.aov_images();
         if aovs.is_empty() {
             to_array(py, &out.image())

@@ -3,7 +3,7 @@
 # workspace's tests, then the Python package's pytest suite against a fresh `pip install .` in a
 # virtual environment (.venv-test/, made when missing).
 # Needs only a Rust toolchain (rustup) and Python >= 3.9 with venv; PyPI for maturin, numpy,
-# pytest and mypy. This is the README's test command and what .ci/run runs.
+# pytest, mypy and ray. This is the README's test command and what .ci/run runs.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if ! command -v cargo >/dev/null 2>&1; then
@@ -53,7 +53,8 @@ if [ ! -x "$VENV/bin/python" ]; then
     fi
 fi
 export PATH="$PWD/$VENV/bin:$PATH"   # maturin's command must be on PATH for the build
-python -m pip install --quiet --disable-pip-version-check "maturin>=1.5,<2" numpy pytest mypy
+# ray: the distributed renders' tests run on a local Ray (python/tests/test_distributed.py)
+python -m pip install --quiet --disable-pip-version-check "maturin>=1.5,<2" numpy pytest mypy "ray>=2.9"
 start=$SECONDS
 # the build tools are in the venv already: no isolated build environment to download
 python -m pip install --disable-pip-version-check --no-build-isolation --force-reinstall --no-deps .

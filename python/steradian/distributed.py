@@ -16,6 +16,9 @@ here, with its ``file:line:col``), collects every file the loader read (``Scene.
 XML, its includes, meshes, images), puts them in Ray's object store as one bundle, and each
 worker writes the bundle to a temporary folder and loads it once (kept per worker process). No
 shared file system is needed; the cluster needs this package installed (``pip install .``).
+Files the scene names by an absolute path are looked up at that path on the workers (the
+bundle keeps them, but the XML still points elsewhere): give relative names, as Mitsuba's
+exporters write them.
 
 **Faults.** Tasks are deterministic, so a task whose worker dies is run again by Ray
 (``max_retries``) with identical sums; the summary names the tasks that ran more than once.

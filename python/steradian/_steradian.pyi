@@ -71,6 +71,7 @@ class Scene:
         progress: Optional[_Progress] = None,
         checkpoint: Optional[_Path] = None,
         checkpoint_interval: float = 60.0,
+        time_limit: Optional[float] = None,
     ) -> npt.NDArray[np.float32]: ...
     def measure(
         self,
@@ -80,6 +81,7 @@ class Scene:
         *,
         threads: Optional[int] = None,
         progress: Optional[_Progress] = None,
+        time_limit: Optional[float] = None,
     ) -> Measurement: ...
     def plan(
         self,

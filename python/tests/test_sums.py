@@ -126,3 +126,17 @@ def test_a_stopped_render_resumes_from_its_checkpoint(cornell, tmp_path):
     assert not ck.exists(), "a completed render deletes its checkpoint"
     np.testing.assert_array_equal(bits(again), bits(cornell.render(SPP * 8, SEED)))
     assert whole.shape == again.shape
+
+
+def test_a_time_limit_ends_render_and_measure_early(cornell):
+    import time
+
+    t = time.perf_counter()
+    image = cornell.render(1 << 20, SEED, time_limit=0.5)
+    assert time.perf_counter() - t < 30
+    assert image.shape == (24, 24, 3) and np.isfinite(image).all() and image.max() > 0
+    meter = steradian.load_file(CORNELL.parent / "validation" / "disk_on_axis_irradiance.xml")
+    m = meter.measure(10**9, time_limit=0.5)
+    assert 0 < m.spp < 10**9 and (m.stderr > 0).all()
+    with pytest.raises(ValueError, match="time_limit must be a positive number"):
+        cornell.render(4, time_limit=0)

@@ -5,7 +5,7 @@ use std::path::PathBuf;
 use clap::Args;
 use steradian::render::{measure, RenderOptions};
 
-use crate::render::{parse_defines, CliError};
+use crate::render::{parse_defines, parse_time_limit, CliError};
 
 #[derive(Args)]
 pub struct MeasureArgs {
@@ -26,10 +26,15 @@ pub struct MeasureArgs {
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
+    /// End the measurement after SECONDS: the reading is that of the whole passes finished by
+    /// then, with its standard error.
+    #[arg(long, value_name = "SECONDS")]
+    time_limit: Option<f64>,
 }
 
 pub fn run(args: MeasureArgs) -> Result<(), CliError> {
     let defines = parse_defines(&args.defines)?;
+    let time_limit = parse_time_limit(args.time_limit)?;
     RenderOptions { spp: args.spp, threads: args.threads, ..Default::default() }.validate()?;
     let scene = steradian_mitsuba::load_file(&args.scene, &defines)?;
     for w in &scene.warnings {
@@ -47,9 +52,13 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
             seed: args.seed,
             sensor: Some(sensor),
             threads: args.threads,
+            time_limit,
             ..Default::default()
         },
     )?;
+    if m.interrupted {
+        eprintln!("time limit reached: {} of {} samples", m.spp, m.spp_requested);
+    }
     let (quantity, unit, mean, se) = (m.quantity, m.unit(), m.value, m.stderr);
     let id = if s.id.is_empty() { format!("#{sensor}") } else { s.id.clone() };
     if args.json {

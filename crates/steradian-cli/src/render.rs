@@ -58,6 +58,11 @@ pub struct RenderArgs {
     /// Do not show the progress bar.
     #[arg(long)]
     quiet: bool,
+    /// End the render after SECONDS: the image holds the whole passes finished by then (about
+    /// half the work done or more), with their standard errors; with --checkpoint, a later
+    /// --resume goes on.
+    #[arg(long, value_name = "SECONDS")]
+    time_limit: Option<f64>,
     /// Keep the finished passes' sums in FILE (written atomically every
     /// --checkpoint-interval seconds and at Ctrl-C, deleted when the image is written), so that
     /// a killed render can go on with --resume FILE.
@@ -136,6 +141,17 @@ impl From<&str> for CliError {
     }
 }
 
+/// `--time-limit SECONDS`: a positive, finite number of seconds.
+pub fn parse_time_limit(seconds: Option<f64>) -> Result<Option<Duration>, CliError> {
+    match seconds {
+        None => Ok(None),
+        Some(t) if t.is_finite() && t > 0.0 => Ok(Some(Duration::from_secs_f64(t))),
+        Some(t) => {
+            Err(format!("--time-limit must be a positive number of seconds, got {t}").into())
+        }
+    }
+}
+
 pub fn parse_defines(defines: &[String]) -> Result<Vec<(String, String)>, String> {
     defines
         .iter()
@@ -152,6 +168,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     if !(args.checkpoint_interval.is_finite() && args.checkpoint_interval >= 0.0) {
         return Err("--checkpoint-interval must be a number of seconds, at least 0".into());
     }
+    let time_limit = parse_time_limit(args.time_limit)?;
     let resumed = match &args.resume {
         Some(path) => Some(checkpoint::read(path)?),
         None => None,
@@ -261,6 +278,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         resume: resumed,
         on_pass: writer.as_ref().map(|_| &on_pass as &(dyn Fn(&_) + Sync)),
         scene_digest,
+        time_limit,
     };
     let out = render(&scene, &opts).map_err(|e| match (e, &args.resume) {
         (RenderError::Resume(e), Some(path)) => {
@@ -311,7 +329,12 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
 
     let write_time = write_start.elapsed();
     let secs = out.elapsed.as_secs_f64();
-    if out.interrupted {
+    if out.time_limited {
+        eprintln!(
+            "time limit reached: the image holds {} of {} samples per pixel",
+            out.spp, out.spp_requested
+        );
+    } else if out.interrupted {
         eprintln!(
             "interrupted: the image holds {} of {} samples per pixel",
             out.spp, out.spp_requested

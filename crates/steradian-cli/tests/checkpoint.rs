@@ -137,3 +137,34 @@ fn a_checkpoint_of_another_render_is_refused() {
     refused(&["render", "--resume", junk], "not a steradian sums record");
     refused(&["render", "--resume", "missing.ck"], "cannot read checkpoint missing.ck");
 }
+
+/// `--time-limit`: the render ends near the limit with whole passes, says so, and with
+/// `--checkpoint` a later `--resume` completes it to the uninterrupted image.
+#[test]
+fn a_time_limited_render_ends_in_time_and_resumes() {
+    let dir = temp_dir("time-limit");
+    let ck = dir.join("t.ck");
+    let ck_arg = ck.to_str().expect("utf-8 path");
+    let start = Instant::now();
+    let out = run(&dir, &["-o", "t.exr", "--time-limit", "0.5", "--checkpoint", ck_arg, "--quiet"]);
+    let took = start.elapsed();
+    let stderr = text(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{stderr}");
+    assert!(stderr.contains("time limit reached: the image holds "), "{stderr}");
+    assert!(took < Duration::from_secs(30), "took {took:?}");
+    assert!(dir.join("t.exr").exists() && ck.exists(), "image and checkpoint written");
+    let done = run(&dir, &["-o", "t.exr", "--resume", ck_arg, "--quiet"]);
+    assert!(done.status.success(), "{}", text(&done.stderr));
+    let full = run(&dir, &["-o", "full.exr", "--quiet"]);
+    assert!(full.status.success());
+    assert_eq!(bits(&dir.join("t.exr")), bits(&dir.join("full.exr")));
+    for bad in ["0", "-1", "nan"] {
+        let out = Command::new(BIN)
+            .args(["render", &format!("--time-limit={bad}")])
+            .current_dir(&dir)
+            .output()
+            .expect("runs");
+        assert_eq!(out.status.code(), Some(1), "--time-limit {bad}");
+        assert!(text(&out.stderr).contains("--time-limit must be a positive number"), "{bad}");
+    }
+}

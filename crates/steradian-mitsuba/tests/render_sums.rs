@@ -179,3 +179,29 @@ fn damaged_or_foreign_records_are_refused() {
     other[at] = b'9';
     assert!(matches!(RenderSums::from_bytes(&other), Err(SumsError::Version(_))));
 }
+
+/// A render with a time limit stops taking passes once the time is spent: it returns soon,
+/// with whole passes only, and they are exactly the render's first passes.
+#[test]
+fn a_time_limited_render_holds_the_first_whole_passes() {
+    use std::time::{Duration, Instant};
+    for (integrator, spp) in [(PATH, 1 << 20), (PTRACER, 1 << 16)] {
+        let job = scene(integrator);
+        let limit = Duration::from_millis(300);
+        let t = Instant::now();
+        let o = RenderOptions { time_limit: Some(limit), ..opts(spp, 2) };
+        let out = render(&job, &o).expect("renders");
+        let took = t.elapsed();
+        // the pilot, then at most the passes under way at the limit (each far below 10 s)
+        assert!(took < Duration::from_secs(20), "{integrator}: took {took:?}");
+        assert!(out.time_limited && out.interrupted, "{integrator}");
+        assert!(out.spp > 0 && out.spp < spp, "{integrator}: {} spp", out.spp);
+        assert!(pass_bounds(&job.integrator, spp).contains(&out.spp));
+        let branches = Some(out.sums.header.branches);
+        let head =
+            render(&job, &RenderOptions { range: Some((0, out.spp)), branches, ..opts(spp, 1) });
+        assert_eq!(bits(&head.expect("renders").sums), bits(&out.sums), "{integrator}");
+    }
+    let e = render(&scene(PATH), &RenderOptions { time_limit: Some(Duration::ZERO), ..opts(4, 1) });
+    assert!(matches!(e, Err(RenderError::BadOption { option: "time-limit", .. })));
+}

@@ -84,6 +84,17 @@ fn warn_all(py: Python<'_>, job: &Job) -> PyResult<()> {
     Ok(())
 }
 
+/// `time_limit=` in seconds: positive and finite, or None.
+fn time_limit_arg(seconds: Option<f64>) -> PyResult<Option<Duration>> {
+    match seconds {
+        None => Ok(None),
+        Some(t) if t.is_finite() && t > 0.0 => Ok(Some(Duration::from_secs_f64(t))),
+        Some(t) => Err(PyValueError::new_err(format!(
+            "time_limit must be a positive number of seconds, not {t}"
+        ))),
+    }
+}
+
 fn pixel_quantity(name: &str) -> PyResult<PixelQuantity> {
     PixelQuantity::from_name(name).ok_or_else(|| {
         PyValueError::new_err(format!(
@@ -156,6 +167,9 @@ impl Scene {
     /// - `progress`: called as `progress(samples_done, samples_total)` on the calling thread
     ///   while rendering; an exception it raises stops the render and propagates.
     ///
+    /// - `time_limit`: seconds after which the render ends: the image holds the whole passes
+    ///   finished by then (about half the work done or more); with `checkpoint`, a later call
+    ///   goes on. `measure` takes it too.
     /// - `checkpoint`: a file that keeps the finished passes' sums (written atomically every
     ///   `checkpoint_interval` seconds and when the render is stopped); a render given a
     ///   checkpoint that exists continues from it, and returns the uninterrupted render's image
@@ -169,8 +183,8 @@ impl Scene {
     /// The GIL is released while rendering. Ctrl-C stops the render and raises
     /// `KeyboardInterrupt`.
     #[pyo3(
-        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0),
-        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0)"
+        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None)"
     )]
     fn render<'py>(
         &self,
@@ -183,7 +197,9 @@ impl Scene {
         progress: Option<Py<PyAny>>,
         checkpoint: Option<PathBuf>,
         checkpoint_interval: f64,
+        time_limit: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
+        let time_limit = time_limit_arg(time_limit)?;
         let pixel_quantity = pixel_quantity(quantity)?;
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
@@ -233,6 +249,7 @@ impl Scene {
                 resume,
                 on_pass: checkpoint.as_ref().map(|_| &save as &(dyn Fn(&RenderSums) + Sync)),
                 scene_digest,
+                time_limit,
                 ..Default::default()
             };
             let out = render(scene, &opts).map_err(|e| match (e, &checkpoint) {
@@ -270,8 +287,8 @@ impl Scene {
     /// for a camera the image mean. Meters use independent random numbers, so the error is
     /// a proper standard error. Same options as `render`; `seed=None` keeps the scene's seed.
     #[pyo3(
-        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None),
-        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None)"
+        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None)"
     )]
     fn measure(
         &self,
@@ -281,7 +298,9 @@ impl Scene {
         sensor: Option<SensorArg>,
         threads: Option<usize>,
         progress: Option<Py<PyAny>>,
+        time_limit: Option<f64>,
     ) -> PyResult<Measurement> {
+        let time_limit = time_limit_arg(time_limit)?;
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
         let m = run_interruptible(py, progress, |cancel, report| {
@@ -292,6 +311,7 @@ impl Scene {
                 sensor: Some(sensor),
                 cancel: Some(cancel),
                 progress: Some(report),
+                time_limit,
                 ..Default::default()
             };
             measure(scene, &opts)

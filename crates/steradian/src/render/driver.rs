@@ -2,7 +2,7 @@
 //! worker threads that render items, and this thread merging them into passes and the passes
 //! into the render's sums.
 
-use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc;
 use std::time::Instant;
 
@@ -102,7 +102,13 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
     let (scene, spp) = (&job.scene, plan.spp);
     let (width, height) = (plan.film.width, plan.film.height);
     let start = Instant::now();
-    let cancelled = || opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    // a Ctrl-C, or the time limit: the passes finished by then are kept, the rest abandoned;
+    // the time limit never leaves a render without its first pass
+    let have_pass = AtomicBool::new(false);
+    let out_of_time = || {
+        opts.time_limit.is_some_and(|t| start.elapsed() >= t) && have_pass.load(Ordering::Relaxed)
+    };
+    let cancelled = || opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) || out_of_time();
     let pool = thread_pool(opts)?;
     let (integrator, pilot_run) = resolve_branches(job, &plan, opts, &pool);
     let header =
@@ -141,6 +147,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
     };
     let mut add_pass = |pass_end: u32, pass: crate::film::Film| {
         sums.push_pass(pass_end, pass);
+        have_pass.store(true, Ordering::Relaxed);
         if let Some(cb) = opts.on_pass {
             cb(&sums);
         }
@@ -217,6 +224,9 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         elapsed: start.elapsed(),
         // a cancel that came after the last tile changes nothing
         interrupted: sums.end() < end,
+        time_limited: sums.end() < end
+            && out_of_time()
+            && !opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed)),
         sums,
     })
 }

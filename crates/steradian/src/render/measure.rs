@@ -117,6 +117,7 @@ mod tests {
             dropped_samples: 0,
             elapsed: Duration::ZERO,
             interrupted: false,
+            time_limited: false,
         };
         let m = Measurement::from_render(&out, 0, Quantity::Radiance);
         let se = out.film().develop_stderr();

@@ -55,6 +55,11 @@ pub struct RenderOptions<'a> {
     pub on_pass: Option<&'a (dyn Fn(&RenderSums) + Sync)>,
     /// Written into the sums' header ([`SumsHeader::scene_digest`](super::SumsHeader)).
     pub scene_digest: u64,
+    /// End the render this long after it began: like a cancel, the passes finished by then
+    /// are kept and those under way abandoned (`RenderOutput::time_limited` tells). Passes
+    /// double in size up to spp/32, so about half the work done or more is kept; the first
+    /// pass is always finished.
+    pub time_limit: Option<Duration>,
 }
 
 impl RenderOptions<'_> {
@@ -66,6 +71,12 @@ impl RenderOptions<'_> {
         }
         if self.threads == Some(0) {
             return Err(RenderError::BadOption { option: "threads", reason: "must be at least 1" });
+        }
+        if self.time_limit.is_some_and(|t| t.is_zero()) {
+            return Err(RenderError::BadOption {
+                option: "time-limit",
+                reason: "must be more than 0 seconds",
+            });
         }
         Ok(())
     }
@@ -91,7 +102,10 @@ pub struct RenderOutput {
     /// Samples whose value was NaN or infinite: dropped, never splatted.
     pub dropped_samples: u64,
     pub elapsed: Duration,
+    /// The film holds fewer samples than asked for (a cancel, or the time limit).
     pub interrupted: bool,
+    /// The render stopped at its time limit before its last sample.
+    pub time_limited: bool,
 }
 
 impl RenderOutput {

@@ -21,7 +21,8 @@ use crate::integrator::ParticleTracer;
 
 /// Renders the passes `first..end` of `plan` with the particle tracer `tracer` on `threads`
 /// worker threads, handing each finished pass, in order, to `pass_done` (as a film holding
-/// one unit-weight sample per pixel); `report` counts light paths as passes finish.
+/// one unit-weight sample per pixel); `report` counts light paths as passes finish; once
+/// `cancelled`, the passes under way are abandoned.
 pub(super) fn render_particles(
     job: &Job,
     tracer: &ParticleTracer,

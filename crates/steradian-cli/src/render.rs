@@ -186,15 +186,25 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         return Err(format!("output file '{}' must end in .exr", output.display()).into());
     }
     let load_start = Instant::now();
-    let scene = match &args.scene {
-        Some(path) => steradian_mitsuba::load_file(path, &defines)?,
-        None => steradian_mitsuba::load_string(
-            BUILTIN_SCENE,
-            Path::new(&format!("<built-in {BUILTIN_NAME}.xml>")),
+    // the XML (and its includes) parsed, then the scene built from it: meshes and images
+    // read, BSDF tables made, the BVH built
+    let (tree, base) = match &args.scene {
+        Some(path) => (
+            steradian_mitsuba::parse_file(path, &defines)?,
+            path.parent().unwrap_or(Path::new(".")),
+        ),
+        None => (
+            steradian_mitsuba::xml::parse_string_named(
+                BUILTIN_SCENE,
+                Path::new(&format!("<built-in {BUILTIN_NAME}.xml>")),
+                Path::new("."),
+                &defines,
+            )?,
             Path::new("."),
-            &defines,
-        )?,
+        ),
     };
+    let parse_time = load_start.elapsed();
+    let scene = steradian_mitsuba::build_scene(&tree, base)?;
     let load_time = load_start.elapsed();
     // what a checkpoint must match: the contents of every file the scene read, and the -D
     // overrides
@@ -380,8 +390,9 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         _ => {}
     }
     println!(
-        "time: load {:.2} s (of which BVH build {:.2} s), render {:.2} s, write {:.2} s",
+        "time: load {:.2} s (of which parse {:.2} s, BVH build {:.2} s), render {:.2} s, write {:.2} s",
         load_time.as_secs_f64(),
+        parse_time.as_secs_f64(),
         scene.scene.build_time().as_secs_f64(),
         secs,
         write_time.as_secs_f64()

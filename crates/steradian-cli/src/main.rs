@@ -3,7 +3,6 @@
 //! A thin shell over the `steradian` and `steradian-mitsuba` libraries: argument parsing,
 //! progress display, file output and error reporting live here, nothing else.
 
-mod checkpoint;
 mod measure;
 mod render;
 mod verify;

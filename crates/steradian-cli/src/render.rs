@@ -6,13 +6,13 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use clap::Args;
-
-use crate::checkpoint;
 use indicatif::{ProgressBar, ProgressStyle};
 use steradian::film::false_color_png;
 use steradian::film::{write_exr, write_exr_channels, write_png, ComponentFormat, ExrLayer};
 use steradian::integrator::Integrator;
-use steradian::render::{render, PixelQuantity, Progress, RenderError, RenderOptions};
+use steradian::render::{
+    render, Checkpoint, PixelQuantity, Progress, RenderError, RenderOptions, RenderSums,
+};
 use steradian::sampling::SamplerKind;
 
 /// The built-in scene, rendered when no scene file is given.
@@ -170,7 +170,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     }
     let time_limit = parse_time_limit(args.time_limit)?;
     let resumed = match &args.resume {
-        Some(path) => Some(checkpoint::read(path)?),
+        Some(path) => Some(Checkpoint::read(path)?),
         None => None,
     };
     let checkpoint_path = args.checkpoint.clone().or_else(|| args.resume.clone());
@@ -208,16 +208,12 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let load_time = load_start.elapsed();
     // what a checkpoint must match: the contents of every file the scene read, and the -D
     // overrides
-    let scene_digest = if checkpoint_path.is_some() {
-        let overrides: Vec<String> = defines.iter().map(|(k, v)| format!("{k}={v}")).collect();
-        let mut extra: Vec<&str> = overrides.iter().map(String::as_str).collect();
-        if args.scene.is_none() {
-            extra.push(BUILTIN_SCENE);
+    let scene_digest = match checkpoint_path {
+        Some(_) => {
+            let source = args.scene.is_none().then_some(BUILTIN_SCENE);
+            steradian_mitsuba::scene_digest(&scene, &defines, source)?
         }
-        steradian::render::digest_inputs(&scene.inputs, &extra)
-            .map_err(|e| format!("cannot read the scene's files for the checkpoint: {e}"))?
-    } else {
-        0
+        None => 0,
     };
     for w in &scene.warnings {
         eprintln!("{w}");
@@ -261,10 +257,10 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     };
     let writer = checkpoint_path
         .as_ref()
-        .map(|p| checkpoint::Writer::new(p, Duration::from_secs_f64(args.checkpoint_interval)));
-    let on_pass = |sums: &steradian::render::RenderSums| {
+        .map(|p| Checkpoint::new(p, Duration::from_secs_f64(args.checkpoint_interval)));
+    let on_pass = |sums: &RenderSums| {
         if let Some(w) = &writer {
-            w.maybe_write(sums);
+            w.maybe_save(sums);
         }
     };
     let opts = RenderOptions {
@@ -298,9 +294,11 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     })?;
     bar.finish_and_clear();
     if let Some(w) = &writer {
-        w.warn_if_failed();
+        if let Some(e) = w.failure() {
+            eprintln!("warning: {e}");
+        }
         if out.interrupted {
-            w.write(&out.sums)?;
+            w.save(&out.sums)?;
             eprintln!(
                 "checkpoint: {} holds {} of {} samples per pixel; continue with --resume {}",
                 w.path().display(),

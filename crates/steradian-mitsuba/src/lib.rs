@@ -88,6 +88,22 @@ pub fn load_file(path: &Path, defines: &[(String, String)]) -> Result<Job, LoadE
     build_scene(&tree, base)
 }
 
+/// What a checkpoint of `job` must match
+/// ([`SumsHeader::scene_digest`](steradian::render::SumsHeader::scene_digest)): a digest of
+/// every file the scene read ([`Job::inputs`]), the `defines` it was loaded with, and its XML
+/// when it was given as a string (`source`).
+pub fn scene_digest(
+    job: &Job,
+    defines: &[(String, String)],
+    source: Option<&str>,
+) -> Result<u64, String> {
+    let overrides: Vec<String> = defines.iter().map(|(k, v)| format!("{k}={v}")).collect();
+    let mut extra: Vec<&str> = overrides.iter().map(String::as_str).collect();
+    extra.extend(source);
+    steradian::render::digest_inputs(&job.inputs, &extra)
+        .map_err(|e| format!("cannot read the scene's files for its digest: {e}"))
+}
+
 /// Loads a scene from a string. `name` is how error messages call it; relative file names
 /// (meshes) resolve against `base_dir`.
 pub fn load_string(

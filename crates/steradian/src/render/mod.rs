@@ -20,6 +20,7 @@
 //! time, `benches/results/2026-12-06-intel-xeon.md`).
 
 mod block;
+mod checkpoint;
 mod driver;
 mod measure;
 mod merge;
@@ -30,6 +31,7 @@ mod schedule;
 mod sums;
 
 pub use block::MAX_AOV_LAYERS;
+pub use checkpoint::Checkpoint;
 pub use driver::{pass_bounds, plan, render, RenderPlan};
 pub use measure::{measure, Measurement};
 pub use options::{Progress, RenderError, RenderOptions, RenderOutput};

@@ -3,7 +3,7 @@
 
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
-use pyo3::types::{PyByteArray, PyBytes};
+use pyo3::types::{PyByteArray, PyBytes, PyTuple};
 use steradian::film::{AovLayer, Image};
 
 /// A float32 array (H, W, 3) holding a copy of `image` (row 0 = top).
@@ -44,6 +44,23 @@ pub fn to_channels_array<'py>(
     let np = py.import("numpy")?;
     let flat = np.call_method1("frombuffer", (buffer, np.getattr("float32")?))?;
     flat.call_method1("reshape", ((image.height as usize, image.width as usize, n),))
+}
+
+/// A float64 array of `shape` holding a copy of `values` (one copy, as `to_array`).
+pub fn to_f64_array<'py>(
+    py: Python<'py>,
+    values: &[f64],
+    shape: &[usize],
+) -> PyResult<Bound<'py, PyAny>> {
+    let buffer = PyByteArray::new_with(py, values.len() * 8, |bytes| {
+        for (b, v) in bytes.chunks_exact_mut(8).zip(values) {
+            b.copy_from_slice(&v.to_ne_bytes());
+        }
+        Ok(())
+    })?;
+    let np = py.import("numpy")?;
+    let flat = np.call_method1("frombuffer", (buffer, np.getattr("float64")?))?;
+    flat.call_method1("reshape", (PyTuple::new(py, shape)?,))
 }
 
 /// An image from any array-like of shape (H, W, 3), converted to float32.

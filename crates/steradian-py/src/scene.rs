@@ -3,18 +3,17 @@
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
-use std::sync::Mutex;
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 use steradian::render::{
-    measure, render, Job, PixelQuantity, RenderError, RenderOptions, RenderSums,
+    measure, render, Checkpoint, Job, PixelQuantity, RenderError, RenderOptions, RenderSums,
 };
 use steradian::sensor::Quantity;
 
-use crate::array::{to_array, to_channels_array};
+use crate::array::{to_array, to_channels_array, to_f64_array};
 use crate::errors::{render_error, scene_error};
 use crate::interrupt::run_interruptible;
 use crate::sums::Sums;
@@ -123,15 +122,6 @@ enum SensorArg {
 }
 
 impl Scene {
-    /// A digest of the scene's files, XML string and overrides (`digest_inputs`).
-    fn digest(&self) -> PyResult<u64> {
-        let overrides: Vec<String> = self.defines.iter().map(|(k, v)| format!("{k}={v}")).collect();
-        let mut extra: Vec<&str> = overrides.iter().map(String::as_str).collect();
-        extra.extend(self.source.as_deref());
-        steradian::render::digest_inputs(&self.inner.inputs, &extra)
-            .map_err(|e| PyOSError::new_err(format!("cannot read the scene's files: {e}")))
-    }
-
     fn sensor(&self, sensor: Option<SensorArg>) -> PyResult<usize> {
         let n = self.inner.scene.sensors.len();
         match sensor {
@@ -209,31 +199,23 @@ impl Scene {
         let (resume, scene_digest) = match &checkpoint {
             Some(path) => {
                 let resume = if path.exists() {
-                    let sums = RenderSums::load(path).map_err(PyValueError::new_err)?;
-                    if !sums.is_prefix() {
-                        return Err(PyValueError::new_err(format!(
-                            "{} does not hold a render from its start: not a checkpoint",
-                            path.display()
-                        )));
-                    }
-                    Some(sums)
+                    Some(Checkpoint::read(path).map_err(PyValueError::new_err)?)
                 } else {
                     None
                 };
-                (resume, self.digest()?)
+                let digest =
+                    steradian_mitsuba::scene_digest(scene, &self.defines, self.source.as_deref())
+                        .map_err(PyOSError::new_err)?;
+                (resume, digest)
             }
             None => (None, 0),
         };
         let interval = Duration::from_secs_f64(checkpoint_interval);
-        let last_save = Mutex::new(Instant::now());
+        let writer = checkpoint.as_ref().map(|p| Checkpoint::new(p, interval));
+        // a failed save leaves the previous checkpoint; the render goes on
         let save = |sums: &RenderSums| {
-            if let Some(path) = &checkpoint {
-                let mut last = last_save.lock().unwrap_or_else(|e| e.into_inner());
-                if last.elapsed() >= interval {
-                    // a failed write leaves the previous checkpoint; the render goes on
-                    let _ = sums.save(path);
-                    *last = Instant::now();
-                }
+            if let Some(w) = &writer {
+                w.maybe_save(sums);
             }
         };
         let out = run_interruptible(py, progress, |cancel, report| {
@@ -247,7 +229,7 @@ impl Scene {
                 progress: Some(report),
                 quantity: pixel_quantity,
                 resume,
-                on_pass: checkpoint.as_ref().map(|_| &save as &(dyn Fn(&RenderSums) + Sync)),
+                on_pass: writer.as_ref().map(|_| &save as &(dyn Fn(&RenderSums) + Sync)),
                 scene_digest,
                 time_limit,
                 ..Default::default()
@@ -259,17 +241,12 @@ impl Scene {
                 )),
                 (e, _) => render_error(e),
             })?;
-            if let Some(path) = &checkpoint {
+            if let Some(w) = &writer {
                 if out.interrupted {
-                    out.sums.save(path).map_err(|e| {
-                        PyOSError::new_err(format!(
-                            "cannot write checkpoint {}: {e}",
-                            path.display()
-                        ))
-                    })?;
+                    w.save(&out.sums).map_err(PyOSError::new_err)?;
                 } else {
                     // the image holds every sample: the checkpoint has done its work
-                    let _ = std::fs::remove_file(path);
+                    w.remove();
                 }
             }
             Ok::<_, PyErr>(out)
@@ -515,13 +492,13 @@ impl Measurement {
     /// The estimate per RGB channel, float64 array of shape (3,), in `unit`.
     #[getter]
     fn value<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        float64_array(py, self.inner.value)
+        to_f64_array(py, &self.inner.value, &[3])
     }
 
     /// The standard error of `value` per channel, float64 array of shape (3,), in `unit`.
     #[getter]
     fn stderr<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        float64_array(py, self.inner.stderr)
+        to_f64_array(py, &self.inner.stderr, &[3])
     }
 
     /// `"radiance"` or `"irradiance"`.
@@ -579,9 +556,4 @@ impl Measurement {
             self.inner.spp
         )
     }
-}
-
-fn float64_array(py: Python<'_>, v: [f64; 3]) -> PyResult<Bound<'_, PyAny>> {
-    let np = py.import("numpy")?;
-    np.call_method1("array", (v.to_vec(), np.getattr("float64")?))
 }

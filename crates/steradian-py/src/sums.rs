@@ -7,7 +7,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 use steradian::render::{PixelQuantity, RenderSums};
 
-use crate::array::to_array;
+use crate::array::{to_array, to_f64_array};
 
 /// The raw sums of samples `first .. end` of every pixel of a render (`Scene.render_range`):
 /// per pixel Σw·L, Σw, Σw·L² and Σw² in float64, and the count of dropped NaN/Inf samples.
@@ -21,17 +21,6 @@ pub struct Sums {
 
 fn sums_error(e: steradian::render::SumsError) -> PyErr {
     PyValueError::new_err(format!("the sums {e}"))
-}
-
-/// A float64 array of `shape` from `values`.
-fn f64_array<'py>(
-    py: Python<'py>,
-    values: Vec<f64>,
-    shape: &[usize],
-) -> PyResult<Bound<'py, PyAny>> {
-    let np = py.import("numpy")?;
-    let flat = np.call_method1("array", (values, np.getattr("float64")?))?;
-    flat.call_method1("reshape", (PyTuple::new(py, shape)?,))
 }
 
 #[pymethods]
@@ -127,10 +116,13 @@ impl Sums {
         let rgb = |f: &dyn Fn(&steradian::film::PixelAccum) -> [f64; 3]| {
             px.iter().flat_map(f).collect::<Vec<f64>>()
         };
-        d.set_item("wl", f64_array(py, rgb(&|p| p.wl), &[h, w, 3])?)?;
-        d.set_item("w", f64_array(py, px.iter().map(|p| p.w).collect(), &[h, w])?)?;
-        d.set_item("wl2", f64_array(py, rgb(&|p| p.wl2), &[h, w, 3])?)?;
-        d.set_item("w2", f64_array(py, px.iter().map(|p| p.w2).collect(), &[h, w])?)?;
+        let one = |f: &dyn Fn(&steradian::film::PixelAccum) -> f64| {
+            px.iter().map(f).collect::<Vec<f64>>()
+        };
+        d.set_item("wl", to_f64_array(py, &rgb(&|p| p.wl), &[h, w, 3])?)?;
+        d.set_item("w", to_f64_array(py, &one(&|p| p.w), &[h, w])?)?;
+        d.set_item("wl2", to_f64_array(py, &rgb(&|p| p.wl2), &[h, w, 3])?)?;
+        d.set_item("w2", to_f64_array(py, &one(&|p| p.w2), &[h, w])?)?;
         Ok(d)
     }
 

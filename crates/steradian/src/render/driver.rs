@@ -41,9 +41,7 @@ pub struct RenderPlan {
 pub fn plan(job: &Job, opts: &RenderOptions) -> Result<RenderPlan, RenderError> {
     let plan = Plan::new(job, opts)?;
     let pool = thread_pool(opts)?;
-    let (integrator, pilot) = resolve_branches(job, &plan, opts, &pool);
-    let header =
-        plan.header(branch_count(&integrator), opts.sensor.unwrap_or(0), opts.scene_digest);
+    let (_, pilot, header) = resolve_branches(job, &plan, opts, &pool);
     Ok(RenderPlan { header, pass_bounds: pass_bounds(&job.integrator, plan.spp), pilot })
 }
 
@@ -54,16 +52,16 @@ fn thread_pool(opts: &RenderOptions) -> Result<rayon::ThreadPool, RenderError> {
         .map_err(|e| RenderError::ThreadPool(e.to_string()))
 }
 
-/// The integrator with `path`'s branch count fixed: the options' (or the resumed sums') count,
-/// else the pilot's. Surface maps estimate irradiance, whose paths keep the default count: no
-/// pilot for them.
+/// The integrator with `path`'s branch count fixed (the options' or the resumed sums' count,
+/// else the pilot's; surface maps estimate irradiance, whose paths keep the default count: no
+/// pilot for them), the pilot that ran, and the header of the render's sums.
 fn resolve_branches(
     job: &Job,
     plan: &Plan,
     opts: &RenderOptions,
     pool: &rayon::ThreadPool,
-) -> (Integrator, Option<Pilot>) {
-    match &job.integrator {
+) -> (Integrator, Option<Pilot>, super::SumsHeader) {
+    let (integrator, pilot) = match &job.integrator {
         Integrator::Path(p)
             if p.branches == Branches::Auto && plan.quantity == PixelQuantity::Sensor =>
         {
@@ -81,9 +79,13 @@ fn resolve_branches(
             (Integrator::Path(PathTracer { branches: Branches::Fixed(n), ..p.clone() }), pilot_run)
         }
         other => (other.clone(), None),
-    }
+    };
+    let header =
+        plan.header(branch_count(&integrator), opts.sensor.unwrap_or(0), opts.scene_digest);
+    (integrator, pilot, header)
 }
 
+/// `path`'s branch count, 0 for the other integrators (as the sums' header records it).
 fn branch_count(integrator: &Integrator) -> u32 {
     match integrator {
         Integrator::Path(p) => p.branches.count(),
@@ -108,11 +110,10 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
     let out_of_time = || {
         opts.time_limit.is_some_and(|t| start.elapsed() >= t) && have_pass.load(Ordering::Relaxed)
     };
-    let cancelled = || opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed)) || out_of_time();
+    let stopped = || opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
+    let cancelled = || stopped() || out_of_time();
     let pool = thread_pool(opts)?;
-    let (integrator, pilot_run) = resolve_branches(job, &plan, opts, &pool);
-    let header =
-        plan.header(branch_count(&integrator), opts.sensor.unwrap_or(0), opts.scene_digest);
+    let (integrator, pilot_run, header) = resolve_branches(job, &plan, opts, &pool);
 
     // the range: on pass boundaries, continuing the resumed sums
     let bounds = pass_bounds(&job.integrator, spp);
@@ -212,10 +213,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
     let film_spp = sums.end() - sums.first();
     Ok(RenderOutput {
         quantity: plan.quantity,
-        branches: match &integrator {
-            Integrator::Path(p) => Some(p.branches.count()),
-            _ => None,
-        },
+        branches: Some(branch_count(&integrator)).filter(|&n| n > 0),
         pilot: pilot_run,
         spp: film_spp,
         spp_requested: end - sums.first(),
@@ -224,9 +222,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         elapsed: start.elapsed(),
         // a cancel that came after the last tile changes nothing
         interrupted: sums.end() < end,
-        time_limited: sums.end() < end
-            && out_of_time()
-            && !opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed)),
+        time_limited: sums.end() < end && out_of_time() && !stopped(),
         sums,
     })
 }

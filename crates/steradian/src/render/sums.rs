@@ -249,8 +249,8 @@ impl RenderSums {
     pub fn to_bytes(&self) -> Vec<u8> {
         let pixels = self.header.width as usize * self.header.height as usize;
         let films = if self.first == 0 { 1 } else { self.passes.len() };
-        let per_film = 8 + 8 * pixels * (8 + 3 * self.header.aov_layers as usize);
-        let mut out = Vec::with_capacity(128 + films * (per_film + 4));
+        let per_film = 12 + 8 * pixels * (8 + 3 * self.header.aov_layers as usize);
+        let mut out = Vec::with_capacity(128 + films * per_film);
         out.extend_from_slice(MAGIC);
         put_u32(&mut out, FORMAT);
         let v = crate::VERSION.as_bytes();

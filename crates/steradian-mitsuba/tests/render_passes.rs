@@ -2,27 +2,18 @@
 //! no barrier between passes, yet the image is the same for any thread count, and a render
 //! cancelled part-way keeps exactly the passes it finished.
 
-use std::path::Path;
+mod common;
+
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use steradian::render::Job;
 use steradian::render::{render, Progress, RenderOptions, RenderOutput};
 
-/// A 40 × 24 film (2 × 1 tiles, so each pass is split into sample ranges too) of a floor and a
-/// wall lit by a disk, with a gaussian filter (blocks overlap across tile borders).
+/// A 40 × 24 film (2 × 1 tiles, so each pass is split into sample ranges too) of the lit
+/// corner (`common::lit_corner`), blocks overlapping across tile borders.
 fn scene() -> Job {
-    let xml = r#"<scene version="3.0.0">
-        <integrator type="path"><integer name="max_depth" value="4"/><integer name="branches" value="2"/></integrator>
-        <sensor type="perspective"><float name="fov" value="60"/>
-            <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
-            <film type="hdrfilm"><integer name="width" value="40"/><integer name="height" value="24"/></film></sensor>
-        <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><bsdf type="diffuse"/></shape>
-        <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate y="1" angle="80"/><translate x="-2"/></transform>
-            <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.5, 0.2"/></bsdf></shape>
-        <shape type="disk"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate x="1" z="1"/></transform>
-            <emitter type="area"><rgb name="radiance" value="20"/></emitter></shape>
-        </scene>"#;
-    steradian_mitsuba::load_string(xml, Path::new("passes.xml"), Path::new("."), &[]).unwrap()
+    let path = r#"<integrator type="path"><integer name="max_depth" value="4"/><integer name="branches" value="2"/></integrator>"#;
+    common::lit_corner(path, 40, 24)
 }
 
 fn pixels(out: &RenderOutput) -> Vec<f32> {

@@ -2,31 +2,16 @@
 //! ranges, rendered apart (other thread counts, through bytes, resumed), joined in range order,
 //! gives the uninterrupted render's sums bit for bit; sums of another render are refused.
 
-use std::path::Path;
+mod common;
 
 use steradian::render::Job;
 use steradian::render::{
     pass_bounds, plan, render, RenderError, RenderOptions, RenderSums, SumsError,
 };
 
-/// A floor and a wall lit by a disk, seen through a gaussian filter (blocks overlap across
-/// tile borders, so the order of addition shows in the bits), `path` with branches left to
-/// the pilot, or the particle tracer.
+/// The lit corner (`common::lit_corner`), 40 × 36, with `integrator`.
 fn scene(integrator: &str) -> Job {
-    let xml = format!(
-        r#"<scene version="3.0.0">
-        {integrator}
-        <sensor type="perspective"><float name="fov" value="60"/>
-            <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
-            <film type="hdrfilm"><integer name="width" value="40"/><integer name="height" value="36"/></film></sensor>
-        <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><bsdf type="diffuse"/></shape>
-        <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate y="1" angle="80"/><translate x="-2"/></transform>
-            <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.5, 0.2"/></bsdf></shape>
-        <shape type="disk"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate x="1" z="1"/></transform>
-            <emitter type="area"><rgb name="radiance" value="20"/></emitter></shape>
-        </scene>"#
-    );
-    steradian_mitsuba::load_string(&xml, Path::new("sums.xml"), Path::new("."), &[]).unwrap()
+    common::lit_corner(integrator, 40, 36)
 }
 
 const PATH: &str = r#"<integrator type="path"><integer name="max_depth" value="4"/></integrator>"#;

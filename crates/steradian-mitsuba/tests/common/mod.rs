@@ -148,3 +148,24 @@ pub fn scene_mean_and_error(s: &Job, seed: u64) -> (f64, f64) {
     let se = err.data.iter().step_by(3).map(|&e| (e as f64).powi(2)).sum::<f64>().sqrt() / n;
     (mean, se)
 }
+
+/// A floor and a wall lit by a disk, seen by a `width` × `height` camera with a gaussian
+/// filter (blocks overlap across tile borders, so the order in which they are added shows in
+/// the bits), rendered by `integrator` (an `<integrator>` element).
+pub fn lit_corner(integrator: &str, width: u32, height: u32) -> Job {
+    let xml = format!(
+        r#"<scene version="3.0.0">
+        {integrator}
+        <sensor type="perspective"><float name="fov" value="60"/>
+            <transform name="to_world"><lookat origin="0, 0, 4" target="0, 0, 0" up="0, 1, 0"/></transform>
+            <film type="hdrfilm"><integer name="width" value="{width}"/><integer name="height" value="{height}"/></film></sensor>
+        <shape type="rectangle"><transform name="to_world"><scale value="3"/></transform><bsdf type="diffuse"/></shape>
+        <shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate y="1" angle="80"/><translate x="-2"/></transform>
+            <bsdf type="diffuse"><rgb name="reflectance" value="0.8, 0.5, 0.2"/></bsdf></shape>
+        <shape type="disk"><transform name="to_world"><scale value="0.3"/><rotate x="1" angle="180"/><translate x="1" z="1"/></transform>
+            <emitter type="area"><rgb name="radiance" value="20"/></emitter></shape>
+        </scene>"#
+    );
+    steradian_mitsuba::load_string(&xml, Path::new("lit-corner.xml"), Path::new("."), &[])
+        .expect("the lit corner loads")
+}

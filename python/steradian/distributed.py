@@ -288,12 +288,17 @@ def _load_checkpoint(checkpoint: str, expect: Dict[str, Any]) -> Tuple[Optional[
     return prefix, parts
 
 
+def _end(total: Optional[Any]) -> int:
+    """Where the joined prefix ends (0 before the first range)."""
+    return total.end if total is not None else 0
+
+
 def _join(total: Optional[Any], waiting: Dict[int, Any], ck: Optional[str]) -> Optional[Any]:
     """Appends to `total` every waiting range that now follows it, in order; saves the new
     prefix to the checkpoint and deletes the parts it took in."""
     advanced = False
-    while (total.end if total is not None else 0) in waiting:
-        nxt = waiting.pop(total.end if total is not None else 0)
+    while _end(total) in waiting:
+        nxt = waiting.pop(_end(total))
         if total is None:
             total = nxt
         else:
@@ -357,7 +362,7 @@ def render_sums(
     # what a checkpoint already holds
     ck = os.fspath(checkpoint) if checkpoint is not None else None
     total, waiting = (_load_checkpoint(ck, expect) if ck else (None, {}))
-    done_to = total.end if total is not None else 0
+    done_to = _end(total)
     report.spp_resumed = done_to
     waiting = {f: p for f, p in waiting.items() if f >= done_to}
     todo: List[Tuple[int, int]] = []
@@ -430,7 +435,7 @@ def render_sums(
                 n["seconds"] += secs
                 samples_done += pixels * (b - a)
                 waiting[a] = part
-                if ck and a != (total.end if total is not None else 0):
+                if ck and a != _end(total):
                     part.save(_part_path(ck, a, b))
                 total = _join(total, waiting, ck)
             if bar is not None:

@@ -192,14 +192,9 @@ fn vndf_quadrature(
         g: &dyn Fn(Vec3) -> f32,
     ) -> f32 {
         let (x, w) = gauss_legendre::<N>();
+        let nodes = x.map(|x| (0.5 * x + 0.5) as f32);
         let mut acc = 0f64;
-        for (xa, wa) in x.iter().zip(&w) {
-            for (xb, wb) in x.iter().zip(&w) {
-                let u = Vec2::new((0.5 * xa + 0.5) as f32, (0.5 * xb + 0.5) as f32);
-                let m = distr.sample_normal(wo, u);
-                acc += g(m) as f64 * wa * wb;
-            }
-        }
+        distr.visible_normals_on_grid(wo, &nodes, |a, b, m| acc += g(m) as f64 * w[a] * w[b]);
         (acc * 0.25) as f32
     }
     if eta > 1.0 {

@@ -349,6 +349,15 @@ impl Scene {
             * self.emitter_selection_pdf(e)
     }
 
+    /// Radiance arriving from the environment light `env` along world direction `d` (a ray
+    /// that left the scene), and the density (selection included) with which
+    /// [`Scene::sample_emitter_direction`] proposes `d`.
+    #[inline]
+    pub fn environment_radiance_and_pdf(&self, env: u32, d: Vec3) -> (crate::Spectrum, f32) {
+        let (le, pdf) = self.emitters[env as usize].radiance_and_pdf_from(d);
+        (le, pdf * self.emitter_selection_pdf(env))
+    }
+
     /// Index of the sensor with the given `id`.
     pub fn sensor_index(&self, id: &str) -> Option<usize> {
         self.sensors.iter().position(|s| s.id == id)

@@ -123,6 +123,22 @@ impl Emitter {
         }
     }
 
+    /// For lights at infinity: the radiance arriving from world direction `d` (towards the
+    /// sky) and the solid-angle density with which `sample_direction` proposes `d`, found with
+    /// one lookup; (0, 0) for other lights.
+    #[inline]
+    pub fn radiance_and_pdf_from(&self, d: Vec3) -> (Spectrum, f32) {
+        match self {
+            Emitter::Constant(e) => (e.radiance(), e.pdf_direction(d)),
+            Emitter::EnvMap(e) => e.radiance_and_pdf(d),
+            Emitter::Area(_)
+            | Emitter::Point(_)
+            | Emitter::Spot(_)
+            | Emitter::Directional(_)
+            | Emitter::Projector(_) => (Spectrum::ZERO, 0.0),
+        }
+    }
+
     #[inline]
     pub fn support(&self) -> Support {
         match self {

@@ -44,7 +44,7 @@ use super::mis::power_heuristic;
 use crate::bsdf::{Lobe, ShadingPoint};
 use crate::emitter::LightSelection;
 use crate::emitter::Support;
-use crate::geometry::{is_positive, SurfacePoint};
+use crate::geometry::is_positive;
 use crate::geometry::{Ray, SurfaceInteraction};
 use crate::param::ParamError;
 use crate::sampling::PixelSampler;
@@ -320,19 +320,10 @@ impl PathTracer {
         tally.ray();
         let Some(si) = scene.intersect(&st.ray) else {
             if let (Some(env), true) = (scene.environment, show_emitters) {
-                let le =
-                    scene.emitters[env as usize].radiance(-st.ray.d, Vec3::ZERO, glam::Vec2::ZERO);
+                let (le, light_pdf) = scene.environment_radiance_and_pdf(env, st.ray.d);
                 let w = match st.prev_lobe {
                     Lobe::Delta => 1.0,
-                    Lobe::Smooth => power_heuristic(
-                        st.prev_pdf,
-                        scene.pdf_emitter_direction(
-                            env,
-                            st.prev_p,
-                            st.ray.d,
-                            &SurfacePoint::AT_INFINITY,
-                        ),
-                    ),
+                    Lobe::Smooth => power_heuristic(st.prev_pdf, light_pdf),
                 };
                 *result += st.beta * le * w;
             }

@@ -3,14 +3,13 @@
 
     python3 benches/render_vs_mitsuba.py [--scenes cornell,furnace,pointlight] [--spp 64]
         [--variant llvm_ad_rgb[,scalar_rgb]] [--repeat 3] [--threads N] [--json FILE|-]
-        [--no-pgo] [--no-build]
+        [--pgo] [--no-build]
 
 For every scene, in one process and alternating (steradian, then each Mitsuba variant, then
 steradian again, ...) so that all see the same machine:
 
-  steradian  the profile-guided release build (scripts/build-pgo.sh, trained on scenes outside
-             this benchmark; --no-pgo: plain `cargo build --release`; the images are the same
-             bit for bit), run as
+  steradian  the default release build (`cargo build --release`; --pgo: the profile-guided
+             build of scripts/build-pgo.sh, the images are the same bit for bit), run as
              `steradian render SCENE --spp N --seed S -o OUT.exr --quiet`, timed as a whole
              process (wall clock of the subprocess: start-up, XML load, BVH build, render,
              EXR + PNG writing). The render time steradian prints itself is reported too.
@@ -19,21 +18,25 @@ steradian again, ...) so that all see the same machine:
              `mi.render(scene, spp=N, seed=S)` until the image is on the host (no load, no
              write).
 
-The reported time of each renderer is the median of --repeat timings. Each image is compared
-with the scene's reference (`<scene>-ref.exr`, thousands of spp rendered by Mitsuba 3):
+Each renderer renders the scene at --pairs pairs of seeds (S + 2k and S + 2k + 1), --repeat
+times each, alternating; its reported time is the median of all those timings. The error is
+measured free of the reference's own noise, from each pair of seeds, and averaged over the
+pairs (one pair's e is itself noisy where fireflies dominate: on glossy_spheres one pair's
+Mitsuba e ranged over 2.2e-3 to 5.0e-3) (ref = the scene's reference `<scene>-ref.exr`,
+thousands of spp rendered by Mitsuba 3, used only as the scale of the relative error):
 
-  relMSE = mean((a - b)^2 / (b^2 + 1e-2))  over pixels and RGB, b = reference
-  ratio  = mean(a) / mean(b) per channel (1.0 = no bias)
-  t@1e-3 = time * relMSE / 1e-3: the time needed to reach relMSE 1e-3, assuming relMSE is
-           proportional to 1/spp (unbiased Monte Carlo). The reference's own noise is NOT
-           subtracted (see benches/README.md).
+  e      = mean((a1 - a2)^2 / (ref^2 + 1e-2)) / 2  over pixels and RGB, averaged over the pairs:
+           the relative MSE of one render against its own expectation, whatever the
+           reference's noise
+  t@1e-3 = time * e / 1e-3: the time needed to reach relMSE 1e-3 (e ~ 1/spp: unbiased Monte Carlo)
   speed-up = Mitsuba t@1e-3 / steradian t@1e-3  (> 1: steradian reaches the target sooner)
 
-and the geometric mean of the speed-ups over the scenes: the headline figure. A second,
-floor-corrected figure accounts for the reference's own noise, a floor f that relMSE against
-the reference never goes below (f from ../shared/scenes/PERF.md, known scenes only):
-relMSE(spp) = a/spp + f, so the time to reach 1e-3 is time * (relMSE - f) / (1e-3 - f). Scenes steradian cannot load yet
-(e.g. an unknown BSDF plugin) are skipped with the reason.
+and the geometric mean of the speed-ups over the scenes: the headline figure. Bias is checked
+separately, against the reference: the ratio of the seeds' mean image to the reference's
+mean per channel, and z_bias = (mean of m - mean of ref) / its standard error, m the mean
+image over all seeds; |z_bias| stays within about 3 for an unbiased renderer when the
+reference's own noise is small against the renders'. Scenes steradian cannot load
+yet (e.g. an unknown BSDF plugin) are skipped with the reason.
 
 The repository is self-contained: scenes and references are read from
 crates/steradian-mitsuba/tests/reference/.
@@ -54,14 +57,6 @@ import time
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 REF_DIR = os.path.join(REPO, "crates", "steradian-mitsuba", "tests", "reference")
 TARGET = 1e-3
-# The references' own noise: relMSE of the reference against the truth, from the shared
-# scenes' PERF.md ("ref-noise floor": Mitsuba's per-sample variance over the reference's spp).
-REF_FLOOR = {"cornell": 2.1e-5, "furnace": 6.2e-6, "pointlight": 1.5e-6, "materials": 2.8e-5, "veach": 7.1e-5}
-
-
-def t_target_floor(t, rel, floor):
-    """Time to relMSE TARGET against a reference whose own noise adds `floor`."""
-    return None if floor is None else t * max(rel - floor, 0.0) / (TARGET - floor)
 EPS = 1e-2
 
 
@@ -125,14 +120,26 @@ def load_exr(mi, dr, np, path):
     return arr[..., :3]
 
 
-def metrics(np, a, b):
-    if a.shape != b.shape:
-        raise ValueError(f"image shape {a.shape} differs from the reference's {b.shape}")
-    d2 = (a - b) ** 2
-    rel = float(np.mean(d2 / (b * b + EPS)))
-    ma = a.reshape(-1, a.shape[-1]).mean(0)
-    mb = np.maximum(b.reshape(-1, b.shape[-1]).mean(0), 1e-30)
-    return rel, [float(x) for x in ma / mb]
+def metrics(np, pairs, ref):
+    """Pairs of renders at different seeds against the reference (see the module docs):
+    e (relative MSE of one render, free of the reference's noise, averaged over the pairs),
+    the mean ratio per channel and z_bias."""
+    for a1, a2 in pairs:
+        if a1.shape != ref.shape or a2.shape != ref.shape:
+            raise ValueError(f"image shape {a1.shape} differs from the reference's {ref.shape}")
+    w = 1.0 / (ref * ref + EPS)
+    # per pixel, the variance of one render, from each pair
+    e_pix = sum((a1 - a2) ** 2 / 2 for a1, a2 in pairs) / len(pairs)
+    e = float(np.mean(e_pix * w))
+    k = 2 * len(pairs)
+    m = sum(a1 + a2 for a1, a2 in pairs) / k
+    mm = m.reshape(-1, m.shape[-1]).mean(0)
+    mr = np.maximum(ref.reshape(-1, ref.shape[-1]).mean(0), 1e-30)
+    # the variance of the image mean: sum over pixels of (one render's variance / k) / n^2
+    n = m.size
+    se = float(np.sqrt(np.sum(e_pix / k)) / n)
+    z = float((m.mean() - ref.mean()) / se) if se > 0 else 0.0
+    return e, [float(x) for x in mm / mr], z
 
 
 # ----------------------------------------------------------------------------- steradian
@@ -215,16 +222,17 @@ class MitsubaScene:
         self.image = self._render()
         self.cold_s = time.perf_counter() - t0  # includes the JIT compile (or a kernel-cache hit)
 
-    def _render(self):
-        img = self.mi.render(self.scene, spp=self.spp, seed=self.seed)
+    def _render(self, seed=None):
+        img = self.mi.render(self.scene, spp=self.spp, seed=self.seed if seed is None else seed)
         return self.np.array(img, dtype=self.np.float64)  # forces evaluation and the copy to host
 
-    def timed(self):
+    def timed(self, seed):
+        """(wall s, cpu s, image) of a warm render at `seed`."""
         self.mi.set_variant(self.variant)
         t0 = time.perf_counter()
         c0 = time.process_time()
-        self.image = self._render()
-        return time.perf_counter() - t0, time.process_time() - c0
+        image = self._render(seed)
+        return time.perf_counter() - t0, time.process_time() - c0, image
 
 
 # ----------------------------------------------------------------------------- benchmark
@@ -243,7 +251,8 @@ def fmt_t(x):
     return "-" if x is None else (f"{x:.3f}" if x < 10 else f"{x:.1f}")
 
 
-def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, log=sys.stderr, pgo=True):
+def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, log=sys.stderr, pgo=False,
+        pairs=1):
     """Runs the benchmark; returns a JSON-able dict (and prints progress to `log`).
     `pgo`: time the profile-guided build (scripts/build-pgo.sh), else the plain release build;
     `build`: build it first, else use the binary already there."""
@@ -255,7 +264,7 @@ def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, l
         exe = PGO_EXE if pgo else RELEASE_EXE
     workdir = keep or tempfile.mkdtemp(prefix="steradian_bench_")
     os.makedirs(workdir, exist_ok=True)
-    result = dict(spp=spp, seed=seed, repeat=repeat, threads=threads or os.cpu_count(),
+    result = dict(spp=spp, seed=seed, pairs=pairs, repeat=repeat, threads=threads or os.cpu_count(),
                   variants=variants, target_relmse=TARGET, cpu_count=os.cpu_count(),
                   loadavg_start=[round(x, 2) for x in os.getloadavg()], scenes=[], skipped=[],
                   libllvm=os.environ.get("DRJIT_LIBLLVM_PATH"), mitsuba_version=mi.__version__,
@@ -278,57 +287,59 @@ def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, l
                 continue
             print(f"[{sname}] loading + compiling in Mitsuba ({', '.join(variants)}) ...", file=log, flush=True)
             peers = {v: MitsubaScene(mi, np, v, xml, spp, seed) for v in variants}
-            st_out = os.path.join(workdir, f"{sname}-steradian.exr")
+            seeds = list(range(seed, seed + 2 * pairs))
+            st_outs = [os.path.join(workdir, f"{sname}-steradian-{k}.exr") for k in seeds]
             st_runs, mi_runs = [], {v: [] for v in variants}
+            mi_imgs = {v: {} for v in variants}
             for i in range(repeat):
-                r = run_steradian(exe, xml, spp, seed, threads, st_out)
-                if "error" in r:
-                    raise RuntimeError(f"[{sname}] steradian: {r['error']}")
-                st_runs.append(r)
-                line = f"[{sname}] run {i + 1}/{repeat}: steradian {r['wall']:.3f} s"
-                for v in variants:
-                    mi_runs[v].append(peers[v].timed())
-                    line += f", {v} {mi_runs[v][-1][0]:.3f} s"
-                print(line, file=log, flush=True)
+                for k, st_out in zip(seeds, st_outs):
+                    r = run_steradian(exe, xml, spp, k, threads, st_out)
+                    if "error" in r:
+                        raise RuntimeError(f"[{sname}] steradian: {r['error']}")
+                    st_runs.append(r)
+                    line = f"[{sname}] run {i + 1}/{repeat}, seed {k}: steradian {r['wall']:.3f} s"
+                    for v in variants:
+                        wall, cpu, img = peers[v].timed(k)
+                        mi_runs[v].append((wall, cpu))
+                        mi_imgs[v][k] = img
+                        line += f", {v} {wall:.3f} s"
+                    print(line, file=log, flush=True)
             refimg = load_exr(mi, dr, np, ref)
-            st_rel, st_ratio = metrics(np, load_exr(mi, dr, np, st_out), refimg)
+            st_imgs = [load_exr(mi, dr, np, o) for o in st_outs]
+            st_e, st_ratio, st_z = metrics(np, list(zip(st_imgs[0::2], st_imgs[1::2])), refimg)
             st_wall = statistics.median(r["wall"] for r in st_runs)
             st = dict(time_s=st_wall, cpu_s=statistics.median(r["cpu"] for r in st_runs),
                       render_s=statistics.median(r.get("render_s", float("nan")) for r in st_runs),
                       times=[round(r["wall"], 4) for r in st_runs],
-                      relmse=st_rel, mean_ratio=st_ratio, t_target_s=st_wall * st_rel / TARGET,
-                      t_target_floor_s=t_target_floor(st_wall, st_rel, REF_FLOOR.get(sname)))
-            entry = dict(scene=sname, spp=spp, res=st_runs[0].get("res"), steradian=st, mitsuba={})
+                      relmse=st_e, mean_ratio=st_ratio, z_bias=st_z, t_target_s=st_wall * st_e / TARGET)
+            entry = dict(scene=sname, spp=spp, seeds=list(seeds), res=st_runs[0].get("res"),
+                         steradian=st, mitsuba={})
             for v in variants:
-                img = peers[v].image
                 if keep:
-                    mi.Bitmap(img.astype(np.float32), pixel_format=mi.Bitmap.PixelFormat.RGB).write(
-                        os.path.join(workdir, f"{sname}-{v}.exr"))
-                rel, ratio = metrics(np, img, refimg)
+                    for k in seeds:
+                        mi.Bitmap(mi_imgs[v][k].astype(np.float32), pixel_format=mi.Bitmap.PixelFormat.RGB).write(
+                            os.path.join(workdir, f"{sname}-{v}-{k}.exr"))
+                imgs = [mi_imgs[v][k] for k in seeds]
+                e, ratio, z = metrics(np, list(zip(imgs[0::2], imgs[1::2])), refimg)
                 t = statistics.median(x[0] for x in mi_runs[v])
-                tt = t * rel / TARGET
-                ttf = t_target_floor(t, rel, REF_FLOOR.get(sname))
-                stf = st["t_target_floor_s"]
+                tt = t * e / TARGET
                 entry["mitsuba"][v] = dict(
                     time_s=t, cpu_s=statistics.median(x[1] for x in mi_runs[v]),
                     times=[round(x[0], 4) for x in mi_runs[v]],
                     load_s=peers[v].load_s, first_render_s=peers[v].cold_s,
-                    relmse=rel, mean_ratio=ratio, t_target_s=tt,
+                    relmse=e, mean_ratio=ratio, z_bias=z, t_target_s=tt,
                     time_ratio=t / st_wall,
-                    speedup=tt / st["t_target_s"] if st["t_target_s"] > 0 else None,
-                    t_target_floor_s=ttf,
-                    speedup_floor=ttf / stf if ttf is not None and stf else None)
+                    speedup=tt / st["t_target_s"] if st["t_target_s"] > 0 else None)
             result["scenes"].append(entry)
             del peers
     finally:
         if not keep:
             shutil.rmtree(workdir, ignore_errors=True)
     result["loadavg_end"] = [round(x, 2) for x in os.getloadavg()]
-    result["geomean_speedup"], result["geomean_speedup_floor"] = {}, {}
+    result["geomean_speedup"] = {}
     for v in variants:
-        for key, out in (("speedup", "geomean_speedup"), ("speedup_floor", "geomean_speedup_floor")):
-            sp = [e["mitsuba"][v][key] for e in result["scenes"] if e["mitsuba"][v][key]]
-            result[out][v] = math.exp(sum(map(math.log, sp)) / len(sp)) if sp else None
+        sp = [e["mitsuba"][v]["speedup"] for e in result["scenes"] if e["mitsuba"][v]["speedup"]]
+        result["geomean_speedup"][v] = math.exp(sum(map(math.log, sp)) / len(sp)) if sp else None
     return result
 
 
@@ -340,31 +351,30 @@ def report(res, out=sys.stdout):
     p(f"load average at start {res['loadavg_start']}, at end {res['loadavg_end']}")
     p(f"steradian: {res.get('steradian_build', 'release')} build ({res['steradian']})")
     p("steradian time = whole process (load + render + write); Mitsuba time = warm mi.render() only")
-    p(f"t@1e-3 = time x relMSE / 1e-3 (relMSE ~ 1/spp); speed-up = Mitsuba t@1e-3 / steradian t@1e-3")
+    p("e = mean((a1 - a2)^2 / (ref^2 + 0.01)) / 2, averaged over the pairs of seeds "
+      + (", ".join(map(str, res["scenes"][0]["seeds"])) if res["scenes"] else "-"))
+    p("t@1e-3 = time x e / 1e-3 (e ~ 1/spp); speed-up = Mitsuba t@1e-3 / steradian t@1e-3")
+    p("bias: mean ratio to the reference per channel, z_bias = (image mean - reference mean) / its stderr")
     p("own s = the render time steradian prints itself (no start-up, load or writing)")
     p()
-    hdr = f"{'scene':<11} {'renderer':<12} {'spp':>4} {'time s':>7} {'own s':>6} {'cpu s':>7} {'relMSE':>9} " \
-          f"{'mean ratio R,G,B':<22} {'t@1e-3 s':>8} {'speed-up':>8} {'floor-corr.':>11}"
+    hdr = f"{'scene':<14} {'renderer':<12} {'spp':>4} {'time s':>7} {'own s':>6} {'cpu s':>7} {'e':>9} " \
+          f"{'mean ratio R,G,B':<22} {'z_bias':>6} {'t@1e-3 s':>8} {'speed-up':>8}"
     p(hdr)
     p("-" * len(hdr))
     for e in res["scenes"]:
         s = e["steradian"]
-        p(f"{e['scene']:<11} {'steradian':<12} {e['spp']:>4} {fmt_t(s['time_s']):>7} {fmt_t(s['render_s']):>6} {fmt_t(s['cpu_s']):>7} "
-          f"{s['relmse']:>9.3e} {','.join(f'{x:.4f}' for x in s['mean_ratio']):<22} "
-          f"{fmt_t(s['t_target_s']):>8} {'':>8} {'':>11}")
+        p(f"{e['scene']:<14} {'steradian':<12} {e['spp']:>4} {fmt_t(s['time_s']):>7} {fmt_t(s['render_s']):>6} {fmt_t(s['cpu_s']):>7} "
+          f"{s['relmse']:>9.3e} {','.join(f'{x:.4f}' for x in s['mean_ratio']):<22} {s['z_bias']:>6.2f} "
+          f"{fmt_t(s['t_target_s']):>8} {'':>8}")
         for v, m in e["mitsuba"].items():
             sp = "-" if m["speedup"] is None else f"{m['speedup']:.2f}x"
-            spf = "-" if m.get("speedup_floor") is None else f"{m['speedup_floor']:.2f}x"
-            p(f"{'':<11} {v:<12} {e['spp']:>4} {fmt_t(m['time_s']):>7} {'':>6} {fmt_t(m['cpu_s']):>7} "
-              f"{m['relmse']:>9.3e} {','.join(f'{x:.4f}' for x in m['mean_ratio']):<22} "
-              f"{fmt_t(m['t_target_s']):>8} {sp:>8} {spf:>11}")
+            p(f"{'':<14} {v:<12} {e['spp']:>4} {fmt_t(m['time_s']):>7} {'':>6} {fmt_t(m['cpu_s']):>7} "
+              f"{m['relmse']:>9.3e} {','.join(f'{x:.4f}' for x in m['mean_ratio']):<22} {m['z_bias']:>6.2f} "
+              f"{fmt_t(m['t_target_s']):>8} {sp:>8}")
     p()
     for v, g in res["geomean_speedup"].items():
         n = sum(1 for e in res["scenes"] if e["mitsuba"][v]["speedup"])
         p(f"geometric mean speed-up vs {v} over {n} scene(s): " + ("-" if g is None else f"{g:.2f}x"))
-        gf = res.get("geomean_speedup_floor", {}).get(v)
-        if gf is not None:
-            p(f"  with the references' noise floor subtracted (secondary): {gf:.2f}x")
     for s in res["skipped"]:
         p(f"skipped {s['scene']}: {s['reason']}")
 
@@ -379,20 +389,21 @@ def main(argv=None):
                     help="Mitsuba variant(s), comma-separated, e.g. scalar_rgb,llvm_ad_rgb; default %(default)s")
     ap.add_argument("--threads", type=int, default=0, help="worker threads for both renderers (0 = all cores)")
     ap.add_argument("--repeat", type=int, default=3, help="timed runs per renderer; the median is reported")
-    ap.add_argument("--seed", type=int, default=0)
+    ap.add_argument("--seed", type=int, default=0, help="first seed; pairs use seed, seed + 1, ...")
+    ap.add_argument("--pairs", type=int, default=1, help="pairs of seeds the error is averaged over")
     ap.add_argument("--json", metavar="FILE", help="also write the results as JSON to FILE ('-' = stdout only)")
     ap.add_argument("--keep", metavar="DIR", help="keep the rendered EXRs in DIR")
-    ap.add_argument("--no-pgo", action="store_true",
-                    help="time the plain release build (cargo build --release) instead of the "
-                         "profile-guided one (scripts/build-pgo.sh)")
+    ap.add_argument("--pgo", action="store_true",
+                    help="time the profile-guided build (scripts/build-pgo.sh) instead of the "
+                         "default release build (cargo build --release)")
     ap.add_argument("--no-build", action="store_true",
-                    help="use the binary already built (target/pgo/release/steradian, or "
-                         "target/release/steradian with --no-pgo)")
+                    help="use the binary already built (target/release/steradian, or "
+                         "target/pgo/release/steradian with --pgo)")
     a = ap.parse_args(argv)
-    if a.spp < 1 or a.repeat < 1 or a.threads < 0:
-        ap.error("--spp and --repeat must be >= 1, --threads >= 0")
+    if a.spp < 1 or a.repeat < 1 or a.pairs < 1 or a.threads < 0:
+        ap.error("--spp, --repeat and --pairs must be >= 1, --threads >= 0")
     res = run([s for s in a.scenes.split(",") if s], a.spp, [v for v in a.variant.split(",") if v],
-              a.repeat, a.threads, a.seed, a.keep, not a.no_build, pgo=not a.no_pgo)
+              a.repeat, a.threads, a.seed, a.keep, not a.no_build, pgo=a.pgo, pairs=a.pairs)
     if a.json == "-":
         print(json.dumps(res, indent=1))
     else:

@@ -26,7 +26,8 @@
 //!    radiometry; the typed error of a plugin parameter.
 //! 2. `geometry`: rays, frames, transforms, bounding boxes, ray–triangle intersection.
 //! 3. `sampling`: random and low-discrepancy numbers, warps, discrete distributions.
-//! 4. `film`: images, reconstruction filters, image blocks, EXR and PNG files.
+//! 4. `film`, `photometry`: images, reconstruction filters, image blocks, EXR and PNG files;
+//!    luminaires' photometric files (IES LM-63, EULUMDAT) and their intensity tables.
 //! 5. `texture`: bitmaps and procedural textures.
 //! 6. `shape`: surfaces, their intersection and their sampling.
 //! 7. `bsdf`: BRDFs and BTDFs.
@@ -45,6 +46,7 @@ pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod param;
+pub mod photometry;
 pub mod radiometry;
 pub mod render;
 pub mod sampling;

@@ -1,11 +1,13 @@
 //! Emitter plugins: `area` and `directionalarea` (attached to a shape), `point`, `spot`,
-//! `directional`, `constant`, `envmap`, `projector`.
+//! `directional`, `constant`, `envmap`, `projector`, and steradian's own `luminaire` (a
+//! photometric file) and `ciesky` (CIE standard skies).
 
 use steradian::emitter::{
-    AreaLight, ConstantEnvironment, DirectionalLight, Emitter, EnvironmentMap, PointLight,
-    Projector, SpotLight,
+    cie_sky, AreaLight, ConstantEnvironment, DirectionalLight, Emitter, EnvironmentMap, Luminaire,
+    PointLight, Projector, SkyLevel, SkyModel, SpotLight,
 };
 use steradian::geometry::Transform;
+use steradian::photometry::{parse_eulumdat, parse_ies, IntensityTable};
 use steradian::{Spectrum, Vec3};
 
 use super::{at, at_param, check_non_negative, lookup, Plugins};
@@ -22,6 +24,13 @@ pub(crate) fn build_area(
     node: &PluginNode,
     shape: u32,
 ) -> Result<Option<Emitter>, LoadError> {
+    if node.plugin_type == "luminaire" {
+        return Err(LoadError::at(
+            &node.pos,
+            "a 'luminaire' nested in a shape (an area source over its luminous opening) is not \
+             supported: declare it at the scene level, where it is a point source",
+        ));
+    }
     if node.plugin_type != "area" && node.plugin_type != "directionalarea" {
         return Err(LoadError::at(
             &node.pos,
@@ -82,7 +91,90 @@ pub(super) const EMITTERS: &Plugins<BuildEmitter> = &[
     ("constant", constant),
     ("envmap", build_envmap),
     ("projector", projector),
+    ("luminaire", build_luminaire),
+    ("ciesky", build_ciesky),
 ];
+
+/// steradian's `ciesky` (parameters and defaults: `steradian::emitter::cie_sky`).
+fn build_ciesky(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let err = |name: &str, msg: String| {
+        LoadError::at(p.position(name).unwrap_or(&node.pos), format!("{}: {msg}", node.desc()))
+    };
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let sky = p.get_string("sky")?.unwrap_or_else(|| "overcast".into());
+    let model = if sky == "overcast" {
+        SkyModel::Overcast
+    } else {
+        let kind: u8 = sky.parse().ok().filter(|k| (1..=15).contains(k)).ok_or_else(|| {
+            err(
+                "sky",
+                format!("'sky' must be 'overcast' or a CIE general sky type 1 to 15, got '{sky}'"),
+            )
+        })?;
+        let Some(sun) = p.get_vector("sun_direction")? else {
+            return Err(err(
+                "sky",
+                format!("the CIE general sky of type {kind} needs 'sun_direction'"),
+            ));
+        };
+        if !(sun.is_finite() && sun.length() > 0.0) {
+            return Err(err("sun_direction", "sun_direction must be a non-zero vector".into()));
+        }
+        // the sky frame's sun: world direction through the inverse of to_world
+        let local = to_world.inverse().vector(sun).normalize();
+        SkyModel::General { kind, sun: local }
+    };
+    let level =
+        match (p.get_float("zenith_luminance")?, p.get_float("horizontal_illuminance")?) {
+            (Some(l), None) => SkyLevel::ZenithLuminance(l as f64),
+            (None, Some(e)) => SkyLevel::HorizontalIlluminance(e as f64),
+            _ => return Err(err(
+                "zenith_luminance",
+                "give exactly one of 'zenith_luminance' (cd/m²) and 'horizontal_illuminance' (lx)"
+                    .into(),
+            )),
+        };
+    let env = cie_sky(model, level, &to_world).map_err(at_param(node))?;
+    Ok(Emitter::EnvMap(env))
+}
+
+/// steradian's `luminaire` (parameters and defaults: `steradian::emitter::Luminaire`).
+fn build_luminaire(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let Some(filename) = p.get_string("filename")? else {
+        return Err(LoadError::at(
+            &node.pos,
+            format!("{}: missing parameter 'filename' (an .ies or .ldt file)", node.desc()),
+        ));
+    };
+    let at_file = |msg: String| {
+        LoadError::at(
+            p.position("filename").unwrap_or(&node.pos),
+            format!("{}: \"{filename}\": {msg}", node.desc()),
+        )
+    };
+    let extension = std::path::Path::new(&filename)
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
+    let parse = match extension.as_deref() {
+        Some("ies") => parse_ies,
+        Some("ldt") => parse_eulumdat,
+        _ => return Err(at_file("a photometric file must end in .ies or .ldt".into())),
+    };
+    let path = b.resolve_path(node, &filename);
+    let bytes = std::fs::read(&path).map_err(|e| at_file(format!("cannot read it: {e}")))?;
+    // photometric files are often Latin-1: their text fields do not matter, their numbers are ASCII
+    let text = String::from_utf8_lossy(&bytes);
+    let photometry = parse(&text).map_err(|e| at_file(e.to_string()))?;
+    let table = IntensityTable::new(&photometry).map_err(at_file)?;
+    let scale = p.get_float("scale")?.unwrap_or(Luminaire::DEFAULT_SCALE);
+    let color = p.get_spectrum("color")?.unwrap_or(Spectrum::splat(Luminaire::DEFAULT_COLOR));
+    let to_world = position_or_to_world(node)?;
+    let luminaire = Luminaire::new(&to_world, table, scale, color).map_err(at_param(node))?;
+    Ok(Emitter::Luminaire(luminaire))
+}
 
 /// The `envmap` emitter (parameters and defaults: `steradian::emitter::EnvironmentMap`).
 fn build_envmap(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {

@@ -10,6 +10,7 @@
 //! | `area` | uniform by area on the shape | cosine-weighted, front side | L·π·A |
 //! | `point` | the light | uniform sphere | 4π·I |
 //! | `spot` | the light | uniform in the cutoff cone | I(ω)·2π(1 − cos cutoff) |
+//! | `luminaire` | the light | the table's flux sampling | I(ω)/p(ω) |
 //! | `directional` | uniform on the disk of the bounding sphere's radius R across the beam, a radius upstream of the centre | the beam | π R²·E |
 //! | `constant` | as `directional`, across the sampled direction | uniform sphere | 4π·π R²·L |
 //! | `envmap` | as `constant` | the map's importance sampling | π R²·L(ω)/pdf(ω) |
@@ -74,6 +75,10 @@ impl Emitter {
                 ray: Ray::infinite(e.position, warp::square_to_uniform_sphere(u_dir)),
                 weight: e.intensity * (4.0 * PI),
             },
+            Emitter::Luminaire(e) => {
+                let (d, weight) = e.sample_emission(u_dir)?;
+                EmittedRay { ray: Ray::infinite(e.position, d), weight }
+            }
             Emitter::Spot(e) => {
                 let one_minus = 1.0 - e.cos_cutoff();
                 let d = e.frame.to_world(warp::square_to_uniform_cone(u_dir, one_minus));

@@ -9,6 +9,8 @@
 //! | `constant`    | radiance L of the sky     | W/(m²·sr)   |
 //! | `envmap`      | radiance L of the sky, per pixel × `scale` | W/(m²·sr) |
 //! | `projector`   | irradiance E of an image on the plane z = 1 (× π, × `scale`) | W/m² |
+//! | `ciesky`      | luminance of a CIE standard sky (overcast, general types 1–15), as an `envmap` | cd/m² (→ W/(m²·sr) at 683 lm/W) |
+//! | `luminaire`   | luminous intensity I(γ, C) of a photometric file | cd (→ W/sr at 683 lm/W) |
 //!
 //! `sample_direction` answers "from which direction does this light reach point p, and with
 //! what weight?": the returned `weight` is the incident radiance divided by the solid-angle
@@ -16,21 +18,25 @@
 //! Multiplying by ρ·|cos θ| gives the reflected radiance estimate.
 
 mod area;
+mod ciesky;
 mod constant;
 mod directional;
 mod emission;
 mod envmap;
 mod light_selection;
+mod luminaire;
 mod point;
 mod projector;
 mod spot;
 
 pub use area::AreaLight;
+pub use ciesky::{cie_sky, SkyLevel, SkyModel};
 pub use constant::ConstantEnvironment;
 pub use directional::DirectionalLight;
 pub use emission::EmittedRay;
 pub use envmap::EnvironmentMap;
 pub use light_selection::LightSelection;
+pub use luminaire::{Luminaire, LUMENS_PER_WATT};
 pub use point::PointLight;
 pub use projector::Projector;
 pub use spot::SpotLight;
@@ -75,6 +81,7 @@ pub enum Emitter {
     Constant(ConstantEnvironment),
     EnvMap(EnvironmentMap),
     Projector(Projector),
+    Luminaire(Luminaire),
 }
 
 impl Emitter {
@@ -84,6 +91,7 @@ impl Emitter {
         match self {
             Emitter::Area(e) => e.sample_direction(shapes, p, u),
             Emitter::Point(e) => e.sample_direction(p),
+            Emitter::Luminaire(e) => e.sample_direction(p),
             Emitter::Spot(e) => e.sample_direction(p),
             Emitter::Directional(e) => e.sample_direction(p),
             Emitter::Constant(e) => e.sample_direction(p, u),
@@ -101,6 +109,7 @@ impl Emitter {
             Emitter::Constant(e) => e.pdf_direction(wi),
             Emitter::EnvMap(e) => e.pdf_direction(wi),
             Emitter::Point(_)
+            | Emitter::Luminaire(_)
             | Emitter::Spot(_)
             | Emitter::Directional(_)
             | Emitter::Projector(_) => 0.0,
@@ -117,6 +126,7 @@ impl Emitter {
             Emitter::Constant(e) => e.radiance(),
             Emitter::EnvMap(e) => e.radiance(-wo),
             Emitter::Point(_)
+            | Emitter::Luminaire(_)
             | Emitter::Spot(_)
             | Emitter::Directional(_)
             | Emitter::Projector(_) => Spectrum::ZERO,
@@ -133,6 +143,7 @@ impl Emitter {
             Emitter::EnvMap(e) => e.radiance_and_pdf(d),
             Emitter::Area(_)
             | Emitter::Point(_)
+            | Emitter::Luminaire(_)
             | Emitter::Spot(_)
             | Emitter::Directional(_)
             | Emitter::Projector(_) => (Spectrum::ZERO, 0.0),
@@ -144,6 +155,7 @@ impl Emitter {
         match self {
             Emitter::Area(_) | Emitter::Constant(_) | Emitter::EnvMap(_) => Support::Extended,
             Emitter::Point(_)
+            | Emitter::Luminaire(_)
             | Emitter::Spot(_)
             | Emitter::Directional(_)
             | Emitter::Projector(_) => Support::Delta,
@@ -159,6 +171,7 @@ impl Emitter {
         match self {
             Emitter::Area(e) => shapes[e.shape as usize].light_sampling_bounded(p),
             Emitter::Point(_)
+            | Emitter::Luminaire(_)
             | Emitter::Spot(_)
             | Emitter::Directional(_)
             | Emitter::Projector(_) => true,
@@ -179,6 +192,7 @@ impl Emitter {
         match self {
             Emitter::Area(e) => e.radiance.mean() * PI * shapes[e.shape as usize].surface_area(),
             Emitter::Point(e) => e.intensity * 4.0 * PI,
+            Emitter::Luminaire(e) => e.flux(),
             Emitter::Spot(e) => e.intensity * e.solid_angle_factor(),
             Emitter::Directional(e) => e.irradiance * PI * scene_radius * scene_radius,
             Emitter::Constant(e) => e.radiance * 4.0 * PI * PI * scene_radius * scene_radius,

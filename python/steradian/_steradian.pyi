@@ -1,7 +1,7 @@
 """Types of the compiled extension module (crates/steradian-py)."""
 
 import os
-from typing import Any, Callable, Literal, Optional, Union, final
+from typing import Any, Callable, Dict, Literal, Optional, Union, final
 
 import numpy as np
 import numpy.typing as npt
@@ -83,6 +83,16 @@ class Scene:
         progress: Optional[_Progress] = None,
         time_limit: Optional[float] = None,
     ) -> Measurement: ...
+    def measure_grid(
+        self,
+        spp: Optional[int] = None,
+        seed: Optional[int] = 0,
+        sensor: Optional[_Sensor] = None,
+        *,
+        threads: Optional[int] = None,
+        progress: Optional[_Progress] = None,
+        time_limit: Optional[float] = None,
+    ) -> Dict[str, Any]: ...
     def plan(
         self,
         spp: Optional[int] = None,

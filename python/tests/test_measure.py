@@ -59,3 +59,27 @@ def test_meter_sensor_by_id():
 def test_meters_cannot_make_irradiance_maps():
     with pytest.raises(ValueError, match="camera"):
         steradian.load_file(DISK_METER).render(spp=1, quantity="irradiance")
+
+
+def test_work_plane_grid_as_arrays_in_lux():
+    """A 3 x 2 work plane 2 m below a 1000 cd point source reads I h / d^3 lx at each centre."""
+    w = 1000.0 / 683.0
+    xml = f"""<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="1"/></integrator>
+  <emitter type="point"><point name="position" x="0" y="0" z="2"/>
+    <rgb name="intensity" value="{w}, {w}, {w}"/></emitter>
+  <sensor type="workplane"><transform name="to_world"><scale x="1.5" y="1"/></transform>
+    <integer name="nx" value="3"/><integer name="ny" value="2"/></sensor>
+</scene>"""
+    g = steradian.load_string(xml).measure_grid(spp=4)
+    assert g["unit"] == "lx" and g["values"].shape == g["stderr"].shape == (2, 3)
+    assert g["values"].dtype == np.float64
+    x = np.array([-1.0, 0.0, 1.0])[None, :]
+    y = np.array([0.5, -0.5])[:, None]
+    d2 = x * x + y * y + 4.0
+    np.testing.assert_allclose(g["values"], 1000.0 * 2.0 / d2**1.5, rtol=1e-4)
+    avg, se = g["stats"]["avg"]
+    assert avg == pytest.approx(g["values"].mean()) and se >= 0
+    assert g["stats"]["u0"][0] == pytest.approx(g["values"].min() / avg)
+    with pytest.raises(ValueError, match="workplane"):
+        steradian.load_file(DISK_METER).measure_grid(spp=1)

@@ -3,13 +3,15 @@
 use std::path::PathBuf;
 
 use clap::Args;
-use steradian::render::{measure, RenderOptions};
+use steradian::film::isolux_png;
+use steradian::render::{measure, render, Estimate, GridReading, RenderOptions};
+use steradian::sensor::SensorKind;
 
 use crate::render::{parse_defines, parse_time_limit, CliError};
 
 #[derive(Args)]
 pub struct MeasureArgs {
-    /// Mitsuba 3 XML scene with a meter (radiancemeter, irradiancemeter) or a camera.
+    /// Mitsuba 3 XML scene with a meter (radiancemeter, irradiancemeter, workplane) or a camera.
     scene: PathBuf,
     /// The sensor to read, by id (default: the first).
     #[arg(long)]
@@ -24,8 +26,15 @@ pub struct MeasureArgs {
     #[arg(long)]
     threads: Option<usize>,
     /// Print one JSON object instead of text.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "csv")]
     json: bool,
+    /// For a work plane: print CSV, one line per cell (column i, row j, value, stderr).
+    #[arg(long)]
+    csv: bool,
+    /// For a work plane: also write an isolux picture (false colour, contour lines, each
+    /// cell's value, a scale) to this PNG file.
+    #[arg(long, value_name = "FILE.png")]
+    picture: Option<PathBuf>,
     /// End the measurement after SECONDS: the reading is that of the whole passes finished by
     /// then, with its standard error.
     #[arg(long, value_name = "SECONDS")]
@@ -45,22 +54,42 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         None => 0,
     };
     let s = scene.scene.sensors.get(sensor).ok_or("the scene has no sensor")?;
-    let m = measure(
-        &scene,
-        &RenderOptions {
-            spp: args.spp,
-            seed: args.seed,
-            sensor: Some(sensor),
-            threads: args.threads,
-            time_limit,
-            ..Default::default()
-        },
-    )?;
+    let opts = RenderOptions {
+        spp: args.spp,
+        seed: args.seed,
+        sensor: Some(sensor),
+        threads: args.threads,
+        time_limit,
+        ..Default::default()
+    };
+    let id = if s.id.is_empty() { format!("#{sensor}") } else { s.id.clone() };
+    if let SensorKind::Workplane(w) = &s.kind {
+        let out = render(&scene, &opts)?;
+        if out.interrupted {
+            eprintln!("time limit reached: {} of {} samples", out.spp, out.spp_requested);
+        }
+        let format = match (args.json, args.csv) {
+            (true, _) => GridFormat::Json,
+            (_, true) => GridFormat::Csv,
+            _ => GridFormat::Text,
+        };
+        let grid = GridReading::from_render(&out, w.unit);
+        print_grid(&id, out.spp, &grid, format);
+        if let Some(path) = &args.picture {
+            let title = if grid.unit == "lx" { "illuminance" } else { "irradiance" };
+            isolux_png(path, &grid.values, grid.nx, grid.ny, title, grid.unit)?;
+            eprintln!("wrote {}", path.display());
+        }
+        return Ok(());
+    }
+    if args.csv || args.picture.is_some() {
+        return Err("--csv and --picture apply to a workplane sensor's grid".into());
+    }
+    let m = measure(&scene, &opts)?;
     if m.interrupted {
         eprintln!("time limit reached: {} of {} samples", m.spp, m.spp_requested);
     }
     let (quantity, unit, mean, se) = (m.quantity, m.unit(), m.value, m.stderr);
-    let id = if s.id.is_empty() { format!("#{sensor}") } else { s.id.clone() };
     if args.json {
         println!(
             "{{\"sensor\":{id:?},\"quantity\":\"{quantity:?}\",\"unit\":{unit:?},\"spp\":{},\"value\":[{},{},{}],\"stderr\":[{},{},{}],\"dropped_samples\":{}}}",
@@ -73,4 +102,64 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// How `measure` prints a work plane's grid.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum GridFormat {
+    Text,
+    /// One object: `values` and `stderr` as ny rows of nx, `stats`.
+    Json,
+    /// One line per cell: `i,j,value,stderr` (i the column, j the row from the top).
+    Csv,
+}
+
+/// A work plane's grid in `format`.
+fn print_grid(id: &str, spp: u32, g: &GridReading, format: GridFormat) {
+    let rows = |v: &[f64]| -> String {
+        let rows: Vec<String> = v
+            .chunks(g.nx)
+            .map(|r| format!("[{}]", r.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(",")))
+            .collect();
+        format!("[{}]", rows.join(","))
+    };
+    let est = |e: Estimate| format!("{{\"value\":{},\"stderr\":{}}}", e.value, e.stderr);
+    let st = &g.stats;
+    if format == GridFormat::Csv {
+        let unit = if g.unit == "lx" { "lx" } else { "W_m2" };
+        println!("i,j,value_{unit},stderr_{unit}");
+        for (k, (v, e)) in g.values.iter().zip(&g.stderr).enumerate() {
+            println!("{},{},{v},{e}", k % g.nx, k / g.nx);
+        }
+        return;
+    }
+    if format == GridFormat::Json {
+        println!(
+            "{{\"sensor\":{id:?},\"quantity\":\"{}\",\"unit\":{:?},\"spp\":{spp},\"nx\":{},\"ny\":{},\"values\":{},\"stderr\":{},\"stats\":{{\"avg\":{},\"min\":{},\"max\":{},\"u0\":{},\"min_max\":{}}}}}",
+            if g.unit == "lx" { "Illuminance" } else { "Irradiance" },
+            g.unit,
+            g.nx,
+            g.ny,
+            rows(&g.values),
+            rows(&g.stderr),
+            est(st.avg),
+            est(st.min),
+            est(st.max),
+            est(st.u0),
+            est(st.min_max)
+        );
+        return;
+    }
+    println!("sensor {id}: {}x{} work plane at {spp} spp, {}", g.nx, g.ny, g.unit);
+    let line = |name: &str, e: Estimate, unit: &str| {
+        println!("  {name:<8} {:.6e} ± {:.2e} {unit}", e.value, e.stderr)
+    };
+    line("avg", st.avg, g.unit);
+    line("min", st.min, g.unit);
+    line("max", st.max, g.unit);
+    line("U0", st.u0, "(min/avg)");
+    line("min/max", st.min_max, "");
+    for row in g.values.chunks(g.nx) {
+        println!("  {}", row.iter().map(|v| format!("{v:10.4}")).collect::<Vec<_>>().join(" "));
+    }
 }

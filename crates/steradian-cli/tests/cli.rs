@@ -313,3 +313,47 @@ fn moment_writes_its_layers() {
         assert!(sq[1] >= xyz[1] * xyz[1] * (1.0 - 1e-5), "m2 {} < m1² {}", sq[1], xyz[1] * xyz[1]);
     }
 }
+
+/// `measure` on a work plane prints the grid (ny rows of nx), its errors and the statistics,
+/// in lux: under a 1000 cd point source the centre cells read I h / d³.
+#[test]
+fn measure_prints_a_work_plane_grid() {
+    let dir = temp_dir("cli-workplane");
+    let w = 1000.0 / 683.0;
+    std::fs::write(
+        dir.join("grid.xml"),
+        format!(
+            r#"<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="1"/></integrator>
+  <emitter type="point"><point name="position" x="0" y="0" z="2"/><rgb name="intensity" value="{w}, {w}, {w}"/></emitter>
+  <sensor type="workplane" id="grid">
+    <transform name="to_world"><scale x="2" y="1"/></transform>
+    <integer name="nx" value="2"/><integer name="ny" value="1"/>
+  </sensor>
+</scene>"#
+        ),
+    )
+    .unwrap();
+    let json = ok(&dir, &["measure", "grid.xml", "--json", "--spp", "4"]);
+    for key in
+        ["\"unit\":\"lx\"", "\"nx\":2", "\"ny\":1", "\"stats\":{\"avg\":{\"value\":", "\"u0\":"]
+    {
+        assert!(json.contains(key), "{key} missing from {json}");
+    }
+    // "values":[[a,b]]: both cells at (±1, 0), d² = 5: E = 1000·2/5^1.5 lx
+    let values = json.split("\"values\":[[").nth(1).unwrap().split("]]").next().unwrap();
+    let want = 1000.0 * 2.0 / 5f64.powf(1.5);
+    for v in values.split(',') {
+        let v: f64 = v.parse().unwrap();
+        assert!((v / want - 1.0).abs() < 1e-4, "{v} lx vs {want}");
+    }
+    let text = ok(&dir, &["measure", "grid.xml", "--spp", "4"]);
+    assert!(text.contains("2x1 work plane") && text.contains("U0"), "{text}");
+    let csv = ok(&dir, &["measure", "grid.xml", "--csv", "--spp", "4"]);
+    let lines: Vec<&str> = csv.lines().collect();
+    assert_eq!(lines[0], "i,j,value_lx,stderr_lx");
+    assert!(
+        lines[1].starts_with("0,0,") && lines[2].starts_with("1,0,") && lines.len() == 3,
+        "{csv}"
+    );
+}

@@ -9,9 +9,10 @@ use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 use steradian::render::{
-    measure, render, Checkpoint, Job, PixelQuantity, RenderError, RenderOptions, RenderSums,
+    measure, render, Checkpoint, GridReading, Job, PixelQuantity, RenderError, RenderOptions,
+    RenderSums,
 };
-use steradian::sensor::Quantity;
+use steradian::sensor::{Quantity, SensorKind};
 
 use crate::array::{to_array, to_channels_array, to_f64_array};
 use crate::errors::{render_error, scene_error};
@@ -295,6 +296,63 @@ impl Scene {
         })?
         .map_err(render_error)?;
         Ok(Measurement { inner: m })
+    }
+
+    /// Reads a `workplane` sensor's grid: a dict with `values` and `stderr` (float64 arrays
+    /// of shape (ny, nx), row 0 the plan's top row), `unit` (`"lx"` or `"W/m^2"`), `spp`, and
+    /// `stats`: `avg`, `min`, `max`, `u0` (min/avg) and `min_max` (min/max), each a
+    /// `(value, stderr)` tuple. Same options as `measure`.
+    #[pyo3(
+        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None)"
+    )]
+    #[allow(clippy::too_many_arguments)]
+    fn measure_grid<'py>(
+        &self,
+        py: Python<'py>,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        sensor: Option<SensorArg>,
+        threads: Option<usize>,
+        progress: Option<Py<PyAny>>,
+        time_limit: Option<f64>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let time_limit = time_limit_arg(time_limit)?;
+        let sensor = self.sensor(sensor)?;
+        let scene = &*self.inner;
+        let SensorKind::Workplane(w) = &scene.scene.sensors[sensor].kind else {
+            return Err(PyValueError::new_err("measure_grid reads a 'workplane' sensor"));
+        };
+        let unit = w.unit;
+        let out = run_interruptible(py, progress, |cancel, report| {
+            let opts = RenderOptions {
+                spp,
+                seed,
+                threads,
+                sensor: Some(sensor),
+                cancel: Some(cancel),
+                progress: Some(report),
+                time_limit,
+                ..Default::default()
+            };
+            render(scene, &opts)
+        })?
+        .map_err(render_error)?;
+        let g = GridReading::from_render(&out, unit);
+        let d = PyDict::new(py);
+        d.set_item("values", to_f64_array(py, &g.values, &[g.ny, g.nx])?)?;
+        d.set_item("stderr", to_f64_array(py, &g.stderr, &[g.ny, g.nx])?)?;
+        d.set_item("unit", g.unit)?;
+        d.set_item("spp", out.spp)?;
+        let stats = PyDict::new(py);
+        let s = g.stats;
+        for (name, e) in
+            [("avg", s.avg), ("min", s.min), ("max", s.max), ("u0", s.u0), ("min_max", s.min_max)]
+        {
+            stats.set_item(name, (e.value, e.stderr))?;
+        }
+        d.set_item("stats", stats)?;
+        Ok(d)
     }
 
     /// What a render will do, without rendering: a dict with `spp`, `seed`, `width`,

@@ -1,4 +1,5 @@
-//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `batch`, meters, `distant`) with their film (`hdrfilm`), reconstruction
+//! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `batch`, meters, `distant`, and
+//! steradian's own `workplane`) with their film (`hdrfilm`), reconstruction
 //! filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`).
 
@@ -10,7 +11,7 @@ use steradian::geometry::Transform;
 use steradian::sampling::{Sampler, SamplerKind};
 use steradian::sensor::{
     Batch, Distant, DistantTarget, IrradianceMeter, Orthographic, Perspective, RadianceMeter,
-    Sensor, SensorKind, ThinLens,
+    Sensor, SensorKind, ThinLens, Workplane, WorkplaneMode, WorkplaneUnit,
 };
 
 use super::field_of_view::field_of_view;
@@ -223,7 +224,57 @@ pub(super) const SENSORS: &Plugins<BuildSensor> = &[
     ("irradiancemeter", irradiancemeter),
     ("batch", batch),
     ("distant", distant),
+    ("workplane", workplane),
 ];
+
+/// The cells of a `workplane` along x and y.
+fn workplane_cells(node: &PluginNode) -> Result<(u32, u32), LoadError> {
+    let d = Workplane::DEFAULT_CELLS as i64;
+    Ok((positive_int(node, "nx", d)?, positive_int(node, "ny", d)?))
+}
+
+/// steradian's `workplane` (parameters and defaults: `steradian::sensor::Workplane`).
+fn workplane(
+    _: &Builder,
+    node: &PluginNode,
+    film: &Film,
+    shape: Option<u32>,
+) -> Result<SensorKind, LoadError> {
+    not_in_shape(node, shape)?;
+    let p = &node.props;
+    let (nx, ny) = workplane_cells(node)?;
+    if (film.width, film.height) != (nx, ny) {
+        return Err(LoadError::at(
+            &node.pos,
+            format!(
+                "{}: the film must be nx x ny = {nx}x{ny} pixels (one per cell), got {}x{}",
+                node.desc(),
+                film.width,
+                film.height
+            ),
+        ));
+    }
+    let choice = |name: &str, options: &[&str], default: &str| -> Result<usize, LoadError> {
+        let v = p.get_string(name)?.unwrap_or_else(|| default.to_string());
+        options.iter().position(|o| *o == v).ok_or_else(|| {
+            LoadError::at(
+                p.position(name).unwrap_or(&node.pos),
+                format!(
+                    "{}: '{name}' must be one of {}, got '{v}'",
+                    node.desc(),
+                    options.join(", ")
+                ),
+            )
+        })
+    };
+    let mode =
+        [WorkplaneMode::Point, WorkplaneMode::Cell][choice("mode", &["point", "cell"], "point")?];
+    let unit = [WorkplaneUnit::Illuminance, WorkplaneUnit::Irradiance]
+        [choice("quantity", &["illuminance", "irradiance"], "illuminance")?];
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let w = Workplane::new(to_world, nx, ny, mode, unit).map_err(at_param(node))?;
+    Ok(SensorKind::Workplane(w))
+}
 
 /// Builds a sensor; `shape` is the enclosing shape for an `irradiancemeter`.
 pub(crate) fn build(
@@ -234,6 +285,11 @@ pub(crate) fn build(
     let build_kind = lookup(SENSORS, node)?;
     let film = match single_child(node, ObjectTag::Film)? {
         Some(f) => build_film(f)?,
+        // a work plane's film is its grid
+        None if node.plugin_type == "workplane" => {
+            let (nx, ny) = workplane_cells(node)?;
+            Film::new(nx, ny, ReconstructionFilter::Box(BoxFilter)).map_err(at(node))?
+        }
         None => {
             Film::new(Film::DEFAULT_WIDTH, Film::DEFAULT_HEIGHT, ReconstructionFilter::default())
                 .map_err(at(node))?

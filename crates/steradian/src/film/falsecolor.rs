@@ -18,7 +18,7 @@ const RAMP: [[f32; 3]; 5] = [
     [253.0, 231.0, 37.0],
 ];
 
-fn ramp(t: f32) -> [u8; 3] {
+pub(super) fn ramp(t: f32) -> [u8; 3] {
     let t = if t.is_finite() { t.clamp(0.0, 1.0) } else { 0.0 };
     let x = t * 4.0;
     let i = (x as usize).min(3);
@@ -63,14 +63,15 @@ fn glyph(c: char) -> [u8; 7] {
     }
 }
 
-struct Canvas {
-    w: usize,
-    h: usize,
-    rgb: Vec<u8>,
+/// An sRGB picture being drawn.
+pub(super) struct Canvas {
+    pub w: usize,
+    pub h: usize,
+    pub rgb: Vec<u8>,
 }
 
 impl Canvas {
-    fn set(&mut self, x: usize, y: usize, c: [u8; 3]) {
+    pub fn set(&mut self, x: usize, y: usize, c: [u8; 3]) {
         if x < self.w && y < self.h {
             let i = 3 * (y * self.w + x);
             self.rgb[i..i + 3].copy_from_slice(&c);
@@ -78,7 +79,7 @@ impl Canvas {
     }
 
     /// Draws `text` with its top-left corner at (x, y), each font pixel `scale`² pixels.
-    fn text(&mut self, x: usize, y: usize, text: &str, scale: usize, color: [u8; 3]) {
+    pub fn text(&mut self, x: usize, y: usize, text: &str, scale: usize, color: [u8; 3]) {
         for (k, ch) in text.chars().enumerate() {
             let g = glyph(ch);
             for (row, bits) in g.iter().enumerate() {

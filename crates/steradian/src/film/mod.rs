@@ -7,6 +7,7 @@ pub mod filter;
 mod hdrfilm;
 mod image;
 mod image_block;
+pub mod isolux;
 pub mod png;
 mod splat_block;
 mod ztest;
@@ -24,5 +25,6 @@ pub use filter::{
 pub use hdrfilm::{AovLayer, ComponentFormat, Film, MAX_FILM_SIZE};
 pub use image::{mse, rel_mse, Image};
 pub use image_block::{ImageBlock, PixelAccum};
+pub use isolux::isolux_png;
 pub use splat_block::SplatBlock;
 pub use ztest::{erfc, z_test, ZTest, ZTEST_ALPHA, ZTEST_MIN_VARIANCE, ZTEST_PASS_FRACTION};

@@ -133,9 +133,16 @@ impl<'a> BlockRenderer<'a> {
     #[inline]
     fn sensor_value(&self, film_uv: Vec2, s: &mut PixelSampler) -> Spectrum {
         let scene = self.scene;
-        if let SensorKind::IrradianceMeter(m) = &self.sensor.kind {
-            let ps = scene.shapes[m.shape as usize].sample_position(s.next_2d());
-            return estimate_irradiance(scene, self.integrator, ps.p, ps.n, s);
+        match &self.sensor.kind {
+            SensorKind::IrradianceMeter(m) => {
+                let ps = scene.shapes[m.shape as usize].sample_position(s.next_2d());
+                return estimate_irradiance(scene, self.integrator, ps.p, ps.n, s);
+            }
+            SensorKind::Workplane(w) => {
+                let (p, n) = w.point(film_uv);
+                return estimate_irradiance(scene, self.integrator, p, n, s);
+            }
+            _ => {}
         }
         match self.sensor.start_ray(film_uv, s) {
             Some(ray) => self.integrator.li(scene, &ray, s),

@@ -22,6 +22,7 @@
 mod block;
 mod checkpoint;
 mod driver;
+mod grid_reading;
 mod measure;
 mod merge;
 mod options;
@@ -33,6 +34,7 @@ mod sums;
 pub use block::MAX_AOV_LAYERS;
 pub use checkpoint::Checkpoint;
 pub use driver::{pass_bounds, plan, render, RenderPlan};
+pub use grid_reading::{Estimate, GridReading, GridStats};
 pub use measure::{measure, Measurement};
 pub use options::{Progress, RenderError, RenderOptions, RenderOutput};
 pub use quantity::PixelQuantity;

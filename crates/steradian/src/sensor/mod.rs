@@ -9,6 +9,7 @@ pub mod orthographic;
 mod perspective;
 mod radiancemeter;
 mod thinlens;
+mod workplane;
 
 pub use batch::Batch;
 pub use distant::{Distant, DistantTarget};
@@ -18,6 +19,7 @@ pub use orthographic::Orthographic;
 pub use perspective::{Perspective, SensorConnection};
 pub use radiancemeter::RadianceMeter;
 pub use thinlens::ThinLens;
+pub use workplane::{Workplane, WorkplaneMode, WorkplaneUnit};
 
 use glam::{UVec2, Vec2};
 
@@ -35,6 +37,7 @@ pub enum SensorKind {
     IrradianceMeter(IrradianceMeter),
     Batch(Batch),
     Distant(Distant),
+    Workplane(Workplane),
 }
 
 /// The radiometric quantity a sensor reports.
@@ -81,7 +84,7 @@ impl Sensor {
         match &self.kind {
             SensorKind::RadianceMeter(m) => Some(m.ray()),
             SensorKind::Distant(m) => Some(m.ray(sampler.next_2d())),
-            SensorKind::IrradianceMeter(_) => None,
+            SensorKind::IrradianceMeter(_) | SensorKind::Workplane(_) => None,
             SensorKind::Perspective(_)
             | SensorKind::ThinLens(_)
             | SensorKind::Orthographic(_)
@@ -135,7 +138,7 @@ impl Sensor {
             | SensorKind::Batch(_)
             | SensorKind::RadianceMeter(_)
             | SensorKind::Distant(_) => Quantity::Radiance,
-            SensorKind::IrradianceMeter(_) => Quantity::Irradiance,
+            SensorKind::IrradianceMeter(_) | SensorKind::Workplane(_) => Quantity::Irradiance,
         }
     }
 
@@ -144,7 +147,10 @@ impl Sensor {
     pub fn is_meter(&self) -> bool {
         matches!(
             self.kind,
-            SensorKind::RadianceMeter(_) | SensorKind::IrradianceMeter(_) | SensorKind::Distant(_)
+            SensorKind::RadianceMeter(_)
+                | SensorKind::IrradianceMeter(_)
+                | SensorKind::Distant(_)
+                | SensorKind::Workplane(_)
         )
     }
 }
@@ -161,7 +167,8 @@ impl SensorKind {
             SensorKind::Batch(b) => b.sample_ray(film_uv, aperture),
             SensorKind::RadianceMeter(_)
             | SensorKind::IrradianceMeter(_)
-            | SensorKind::Distant(_) => None,
+            | SensorKind::Distant(_)
+            | SensorKind::Workplane(_) => None,
         }
     }
 }

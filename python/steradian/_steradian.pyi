@@ -55,6 +55,8 @@ class Measurement:
     def dropped_samples(self) -> int: ...
     @property
     def branches(self) -> Optional[int]: ...
+    @property
+    def target_reached(self) -> bool: ...
 
 @final
 class Scene:
@@ -82,6 +84,7 @@ class Scene:
         threads: Optional[int] = None,
         progress: Optional[_Progress] = None,
         time_limit: Optional[float] = None,
+        target_error: Optional[float] = None,
     ) -> Measurement: ...
     def measure_grid(
         self,
@@ -92,6 +95,7 @@ class Scene:
         threads: Optional[int] = None,
         progress: Optional[_Progress] = None,
         time_limit: Optional[float] = None,
+        target_error: Optional[float] = None,
     ) -> Dict[str, Any]: ...
     def plan(
         self,

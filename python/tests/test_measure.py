@@ -83,3 +83,14 @@ def test_work_plane_grid_as_arrays_in_lux():
     assert g["stats"]["u0"][0] == pytest.approx(g["values"].min() / avg)
     with pytest.raises(ValueError, match="workplane"):
         steradian.load_file(DISK_METER).measure_grid(spp=1)
+
+
+def test_target_error_stops_the_meter_within_it():
+    """The disk meter at a 1 % target: stops early, within 1 % of the closed form."""
+    m = steradian.load_file(DISK_METER).measure(target_error=0.01, seed=3)
+    assert m.target_reached and 64 <= m.spp < 1 << 20
+    expected = np.array([radiometry.disk_on_axis_irradiance(L, 0.8, 1.5) for L in (1.0, 2.0, 4.0)])
+    assert (1.96 * m.stderr <= 0.01 * m.value * 1.0001).all()
+    assert (np.abs(m.value - expected) <= 0.01 * expected).all(), (m.value, expected)
+    with pytest.raises(ValueError, match="target-error"):
+        steradian.load_file(DISK_METER).measure(target_error=2.0)

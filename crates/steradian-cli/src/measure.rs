@@ -4,7 +4,9 @@ use std::path::PathBuf;
 
 use clap::Args;
 use steradian::film::isolux_png;
-use steradian::render::{measure, render, Estimate, GridReading, RenderOptions};
+use steradian::render::{
+    measure, render, Estimate, GridReading, RenderOptions, MAX_SPP_FOR_TARGET,
+};
 use steradian::sensor::SensorKind;
 
 use crate::render::{parse_defines, parse_time_limit, CliError};
@@ -35,6 +37,11 @@ pub struct MeasureArgs {
     /// cell's value, a scale) to this PNG file.
     #[arg(long, value_name = "FILE.png")]
     picture: Option<PathBuf>,
+    /// Stop once every reading (a meter's, each cell of a work plane) is within this fraction
+    /// of its value at 95 % confidence (1.96 standard errors; 0.01 = 1 %). --spp is then the
+    /// most samples taken (default 1048576).
+    #[arg(long, value_name = "FRACTION")]
+    target_error: Option<f64>,
     /// End the measurement after SECONDS: the reading is that of the whole passes finished by
     /// then, with its standard error.
     #[arg(long, value_name = "SECONDS")]
@@ -44,7 +51,13 @@ pub struct MeasureArgs {
 pub fn run(args: MeasureArgs) -> Result<(), CliError> {
     let defines = parse_defines(&args.defines)?;
     let time_limit = parse_time_limit(args.time_limit)?;
-    RenderOptions { spp: args.spp, threads: args.threads, ..Default::default() }.validate()?;
+    RenderOptions {
+        spp: args.spp,
+        threads: args.threads,
+        target_error: args.target_error,
+        ..Default::default()
+    }
+    .validate()?;
     let scene = steradian_mitsuba::load_file(&args.scene, &defines)?;
     for w in &scene.warnings {
         eprintln!("{w}");
@@ -55,7 +68,9 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
     };
     let s = scene.scene.sensors.get(sensor).ok_or("the scene has no sensor")?;
     let opts = RenderOptions {
-        spp: args.spp,
+        // with a target error, spp is a cap
+        spp: args.spp.or(args.target_error.map(|_| MAX_SPP_FOR_TARGET)),
+        target_error: args.target_error,
         seed: args.seed,
         sensor: Some(sensor),
         threads: args.threads,
@@ -65,7 +80,7 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
     let id = if s.id.is_empty() { format!("#{sensor}") } else { s.id.clone() };
     if let SensorKind::Workplane(w) = &s.kind {
         let out = render(&scene, &opts)?;
-        if out.interrupted {
+        if out.time_limited {
             eprintln!("time limit reached: {} of {} samples", out.spp, out.spp_requested);
         }
         let format = match (args.json, args.csv) {
@@ -73,6 +88,7 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
             (_, true) => GridFormat::Csv,
             _ => GridFormat::Text,
         };
+        report_target(args.target_error, out.target_reached, out.spp);
         let grid = GridReading::from_render(&out, w.unit);
         print_grid(&id, out.spp, &grid, format);
         if let Some(path) = &args.picture {
@@ -86,7 +102,8 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         return Err("--csv and --picture apply to a workplane sensor's grid".into());
     }
     let m = measure(&scene, &opts)?;
-    if m.interrupted {
+    report_target(args.target_error, m.target_reached, m.spp);
+    if m.interrupted && !m.target_reached {
         eprintln!("time limit reached: {} of {} samples", m.spp, m.spp_requested);
     }
     let (quantity, unit, mean, se) = (m.quantity, m.unit(), m.value, m.stderr);
@@ -102,6 +119,17 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         }
     }
     Ok(())
+}
+
+/// Says whether the target error was reached, and at how many samples.
+fn report_target(target: Option<f64>, reached: bool, spp: u32) {
+    if let Some(e) = target {
+        if reached {
+            eprintln!("target error {}% reached at {spp} spp", e * 100.0);
+        } else {
+            eprintln!("target error {}% not reached: stopped at {spp} spp", e * 100.0);
+        }
+    }
 }
 
 /// How `measure` prints a work plane's grid.

@@ -285,6 +285,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         on_pass: writer.as_ref().map(|_| &on_pass as &(dyn Fn(&_) + Sync)),
         scene_digest,
         time_limit,
+        target_error: None,
     };
     let out = render(&scene, &opts).map_err(|e| match (e, &args.resume) {
         (RenderError::Resume(e), Some(path)) => {

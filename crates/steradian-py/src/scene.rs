@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 use steradian::render::{
     measure, render, Checkpoint, GridReading, Job, PixelQuantity, RenderError, RenderOptions,
-    RenderSums,
+    RenderSums, MAX_SPP_FOR_TARGET,
 };
 use steradian::sensor::{Quantity, SensorKind};
 
@@ -264,9 +264,11 @@ impl Scene {
     /// sensor's unit. For a meter (`radiancemeter`, `irradiancemeter`) this is its one pixel;
     /// for a camera the image mean. Meters use independent random numbers, so the error is
     /// a proper standard error. Same options as `render`; `seed=None` keeps the scene's seed.
+    /// `target_error=E` stops once the reading is within E of its value at 95 % confidence
+    /// (1.96 standard errors), `spp` then being the most samples taken.
     #[pyo3(
-        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None),
-        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None)"
+        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None)"
     )]
     fn measure(
         &self,
@@ -277,19 +279,22 @@ impl Scene {
         threads: Option<usize>,
         progress: Option<Py<PyAny>>,
         time_limit: Option<f64>,
+        target_error: Option<f64>,
     ) -> PyResult<Measurement> {
         let time_limit = time_limit_arg(time_limit)?;
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
         let m = run_interruptible(py, progress, |cancel, report| {
             let opts = RenderOptions {
-                spp,
+                // with a target error, spp is a cap
+                spp: spp.or(target_error.map(|_| MAX_SPP_FOR_TARGET)),
                 seed,
                 threads,
                 sensor: Some(sensor),
                 cancel: Some(cancel),
                 progress: Some(report),
                 time_limit,
+                target_error,
                 ..Default::default()
             };
             measure(scene, &opts)
@@ -301,10 +306,11 @@ impl Scene {
     /// Reads a `workplane` sensor's grid: a dict with `values` and `stderr` (float64 arrays
     /// of shape (ny, nx), row 0 the plan's top row), `unit` (`"lx"` or `"W/m^2"`), `spp`, and
     /// `stats`: `avg`, `min`, `max`, `u0` (min/avg) and `min_max` (min/max), each a
-    /// `(value, stderr)` tuple. Same options as `measure`.
+    /// `(value, stderr)` tuple, and `target_reached`. Same options as `measure` (a target
+    /// error applies to every cell).
     #[pyo3(
-        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None),
-        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None)"
+        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None)"
     )]
     #[allow(clippy::too_many_arguments)]
     fn measure_grid<'py>(
@@ -316,6 +322,7 @@ impl Scene {
         threads: Option<usize>,
         progress: Option<Py<PyAny>>,
         time_limit: Option<f64>,
+        target_error: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let time_limit = time_limit_arg(time_limit)?;
         let sensor = self.sensor(sensor)?;
@@ -326,13 +333,15 @@ impl Scene {
         let unit = w.unit;
         let out = run_interruptible(py, progress, |cancel, report| {
             let opts = RenderOptions {
-                spp,
+                // with a target error, spp is a cap
+                spp: spp.or(target_error.map(|_| MAX_SPP_FOR_TARGET)),
                 seed,
                 threads,
                 sensor: Some(sensor),
                 cancel: Some(cancel),
                 progress: Some(report),
                 time_limit,
+                target_error,
                 ..Default::default()
             };
             render(scene, &opts)
@@ -344,6 +353,7 @@ impl Scene {
         d.set_item("stderr", to_f64_array(py, &g.stderr, &[g.ny, g.nx])?)?;
         d.set_item("unit", g.unit)?;
         d.set_item("spp", out.spp)?;
+        d.set_item("target_reached", out.target_reached)?;
         let stats = PyDict::new(py);
         let s = g.stats;
         for (name, e) in
@@ -557,6 +567,12 @@ impl Measurement {
     #[getter]
     fn stderr<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
         to_f64_array(py, &self.inner.stderr, &[3])
+    }
+
+    /// Whether the measurement stopped because it reached its `target_error`.
+    #[getter]
+    fn target_reached(&self) -> bool {
+        self.inner.target_reached
     }
 
     /// `"radiance"` or `"irradiance"`.

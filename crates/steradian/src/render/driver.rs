@@ -111,7 +111,15 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         opts.time_limit.is_some_and(|t| start.elapsed() >= t) && have_pass.load(Ordering::Relaxed)
     };
     let stopped = || opts.cancel.is_some_and(|c| c.load(Ordering::Relaxed));
-    let cancelled = || stopped() || out_of_time();
+    // the target error, checked as each pass is added
+    let reached = AtomicBool::new(false);
+    let cancelled = || stopped() || out_of_time() || reached.load(Ordering::Relaxed);
+    if opts.target_error.is_some() && !plan.sensor.is_meter() {
+        return Err(RenderError::BadOption {
+            option: "target-error",
+            reason: "applies to meters and work planes (an image's is not supported yet)",
+        });
+    }
     let pool = thread_pool(opts)?;
     let (integrator, pilot_run, header) = resolve_branches(job, &plan, opts, &pool);
 
@@ -149,6 +157,11 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
     let mut add_pass = |pass_end: u32, pass: crate::film::Film| {
         sums.push_pass(pass_end, pass);
         have_pass.store(true, Ordering::Relaxed);
+        if let Some(e) = opts.target_error {
+            if super::target_error::reached(sums.film(), sums.end() - sums.first(), e) {
+                reached.store(true, Ordering::Relaxed);
+            }
+        }
         if let Some(cb) = opts.on_pass {
             cb(&sums);
         }
@@ -223,6 +236,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         // a cancel that came after the last tile changes nothing
         interrupted: sums.end() < end,
         time_limited: sums.end() < end && out_of_time() && !stopped(),
+        target_reached: reached.load(Ordering::Relaxed),
         sums,
     })
 }

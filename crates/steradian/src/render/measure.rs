@@ -26,6 +26,8 @@ pub struct Measurement {
     /// NaN/Inf samples dropped.
     pub dropped_samples: u64,
     pub interrupted: bool,
+    /// The measurement stopped because it reached `RenderOptions::target_error`.
+    pub target_reached: bool,
     /// Paths continued from each sample's first hit (`path`'s branches, chosen by its pilot
     /// when the scene leaves them unset); `None` for other integrators.
     pub branches: Option<u32>,
@@ -61,6 +63,7 @@ impl Measurement {
             spp_requested: out.spp_requested,
             dropped_samples: out.dropped_samples,
             interrupted: out.interrupted,
+            target_reached: out.target_reached,
             branches: out.branches,
         }
     }
@@ -118,6 +121,7 @@ mod tests {
             elapsed: Duration::ZERO,
             interrupted: false,
             time_limited: false,
+            target_reached: false,
         };
         let m = Measurement::from_render(&out, 0, Quantity::Radiance);
         let se = out.film().develop_stderr();

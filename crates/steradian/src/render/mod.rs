@@ -30,6 +30,7 @@ mod particles;
 mod quantity;
 mod schedule;
 mod sums;
+mod target_error;
 
 pub use block::MAX_AOV_LAYERS;
 pub use checkpoint::Checkpoint;
@@ -39,6 +40,7 @@ pub use measure::{measure, Measurement};
 pub use options::{Progress, RenderError, RenderOptions, RenderOutput};
 pub use quantity::PixelQuantity;
 pub use sums::{digest_inputs, RenderSums, SumsError, SumsHeader};
+pub use target_error::{CONFIDENCE_Z, MAX_SPP_FOR_TARGET, MIN_SAMPLES_FOR_TARGET};
 
 use crate::integrator::Integrator;
 use crate::scene::Scene;

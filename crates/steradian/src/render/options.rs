@@ -60,6 +60,10 @@ pub struct RenderOptions<'a> {
     /// double in size up to spp/32, so about half the work done or more is kept; the first
     /// pass is always finished.
     pub time_limit: Option<Duration>,
+    /// For meters and work planes: stop after the first pass at which every reading's error
+    /// is at most this fraction of its value (`target_error.rs`); `spp` is then the most
+    /// samples taken.
+    pub target_error: Option<f64>,
 }
 
 impl RenderOptions<'_> {
@@ -71,6 +75,12 @@ impl RenderOptions<'_> {
         }
         if self.threads == Some(0) {
             return Err(RenderError::BadOption { option: "threads", reason: "must be at least 1" });
+        }
+        if self.target_error.is_some_and(|e| !(e.is_finite() && e > 0.0 && e < 1.0)) {
+            return Err(RenderError::BadOption {
+                option: "target-error",
+                reason: "must be a fraction between 0 and 1 (0.01 = 1 %)",
+            });
         }
         if self.time_limit.is_some_and(|t| t.is_zero()) {
             return Err(RenderError::BadOption {
@@ -106,6 +116,8 @@ pub struct RenderOutput {
     pub interrupted: bool,
     /// The render stopped at its time limit before its last sample.
     pub time_limited: bool,
+    /// The render stopped because every reading reached `RenderOptions::target_error`.
+    pub target_reached: bool,
 }
 
 impl RenderOutput {

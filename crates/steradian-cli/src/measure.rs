@@ -4,9 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 use steradian::film::isolux_png;
-use steradian::render::{
-    measure, render, Estimate, GridReading, RenderOptions, MAX_SPP_FOR_TARGET,
-};
+use steradian::render::{measure, render, Estimate, GridReading, RenderOptions};
 use steradian::sensor::SensorKind;
 
 use crate::render::{parse_defines, parse_time_limit, CliError};
@@ -68,8 +66,7 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
     };
     let s = scene.scene.sensors.get(sensor).ok_or("the scene has no sensor")?;
     let opts = RenderOptions {
-        // with a target error, spp is a cap
-        spp: args.spp.or(args.target_error.map(|_| MAX_SPP_FOR_TARGET)),
+        spp: args.spp,
         target_error: args.target_error,
         seed: args.seed,
         sensor: Some(sensor),

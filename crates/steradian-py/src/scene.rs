@@ -9,8 +9,8 @@ use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 use steradian::render::{
-    measure, render, Checkpoint, GridReading, Job, PixelQuantity, RenderError, RenderOptions,
-    RenderSums, MAX_SPP_FOR_TARGET,
+    render, Checkpoint, GridReading, Job, PixelQuantity, RenderError, RenderOptions, RenderOutput,
+    RenderSums,
 };
 use steradian::sensor::{Quantity, SensorKind};
 
@@ -137,6 +137,35 @@ impl Scene {
                 ))),
             },
         }
+    }
+
+    /// Renders sensor `sensor` as `measure` and `measure_grid` read it: (spp, seed, sensor,
+    /// threads), interruptible, with a time limit and a target error.
+    fn render_meter(
+        &self,
+        py: Python<'_>,
+        (spp, seed, sensor, threads): (Option<u32>, Option<u64>, usize, Option<usize>),
+        progress: Option<Py<PyAny>>,
+        time_limit: Option<f64>,
+        target_error: Option<f64>,
+    ) -> PyResult<RenderOutput> {
+        let time_limit = time_limit_arg(time_limit)?;
+        let scene = &*self.inner;
+        run_interruptible(py, progress, |cancel, report| {
+            let opts = RenderOptions {
+                spp,
+                seed,
+                threads,
+                sensor: Some(sensor),
+                cancel: Some(cancel),
+                progress: Some(report),
+                time_limit,
+                target_error,
+                ..Default::default()
+            };
+            render(scene, &opts)
+        })?
+        .map_err(render_error)
     }
 }
 
@@ -281,25 +310,16 @@ impl Scene {
         time_limit: Option<f64>,
         target_error: Option<f64>,
     ) -> PyResult<Measurement> {
-        let time_limit = time_limit_arg(time_limit)?;
         let sensor = self.sensor(sensor)?;
-        let scene = &*self.inner;
-        let m = run_interruptible(py, progress, |cancel, report| {
-            let opts = RenderOptions {
-                // with a target error, spp is a cap
-                spp: spp.or(target_error.map(|_| MAX_SPP_FOR_TARGET)),
-                seed,
-                threads,
-                sensor: Some(sensor),
-                cancel: Some(cancel),
-                progress: Some(report),
-                time_limit,
-                target_error,
-                ..Default::default()
-            };
-            measure(scene, &opts)
-        })?
-        .map_err(render_error)?;
+        let out = self.render_meter(
+            py,
+            (spp, seed, sensor, threads),
+            progress,
+            time_limit,
+            target_error,
+        )?;
+        let quantity = self.inner.scene.sensors[sensor].quantity();
+        let m = steradian::render::Measurement::from_render(&out, sensor, quantity);
         Ok(Measurement { inner: m })
     }
 
@@ -324,29 +344,18 @@ impl Scene {
         time_limit: Option<f64>,
         target_error: Option<f64>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let time_limit = time_limit_arg(time_limit)?;
         let sensor = self.sensor(sensor)?;
-        let scene = &*self.inner;
-        let SensorKind::Workplane(w) = &scene.scene.sensors[sensor].kind else {
+        let SensorKind::Workplane(w) = &self.inner.scene.sensors[sensor].kind else {
             return Err(PyValueError::new_err("measure_grid reads a 'workplane' sensor"));
         };
         let unit = w.unit;
-        let out = run_interruptible(py, progress, |cancel, report| {
-            let opts = RenderOptions {
-                // with a target error, spp is a cap
-                spp: spp.or(target_error.map(|_| MAX_SPP_FOR_TARGET)),
-                seed,
-                threads,
-                sensor: Some(sensor),
-                cancel: Some(cancel),
-                progress: Some(report),
-                time_limit,
-                target_error,
-                ..Default::default()
-            };
-            render(scene, &opts)
-        })?
-        .map_err(render_error)?;
+        let out = self.render_meter(
+            py,
+            (spp, seed, sensor, threads),
+            progress,
+            time_limit,
+            target_error,
+        )?;
         let g = GridReading::from_render(&out, unit);
         let d = PyDict::new(py);
         d.set_item("values", to_f64_array(py, &g.values, &[g.ny, g.nx])?)?;

@@ -62,7 +62,7 @@ pub struct RenderOptions<'a> {
     pub time_limit: Option<Duration>,
     /// For meters and work planes: stop after the first pass at which every reading's error
     /// is at most this fraction of its value (`target_error.rs`); `spp` is then the most
-    /// samples taken.
+    /// samples taken (`MAX_SPP_FOR_TARGET` where it is unset).
     pub target_error: Option<f64>,
 }
 
@@ -271,8 +271,11 @@ impl<'a> Plan<'a> {
             return Err(RenderError::ParticlesNeedPinhole);
         }
         let mut sampler = sensor.sampler;
-        if let Some(spp) = opts.spp {
-            sampler.sample_count = spp;
+        // with a target error and no spp, the samples are capped, not set
+        match (opts.spp, opts.target_error) {
+            (Some(spp), _) => sampler.sample_count = spp,
+            (None, Some(_)) => sampler.sample_count = super::MAX_SPP_FOR_TARGET,
+            (None, None) => {}
         }
         if let Some(seed) = opts.seed {
             sampler.seed = seed;

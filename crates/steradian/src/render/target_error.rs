@@ -15,13 +15,12 @@
 //! is far below E at these sample counts (the test measures the rate, not only the mean).
 
 use crate::film::Film;
-use crate::spectrum::LUMINANCE_WEIGHTS;
+use crate::spectrum::luminance_f64;
 
 /// Standard errors in a 95 % (two-sided) confidence half-width.
 pub const CONFIDENCE_Z: f64 = 1.96;
 
-/// Samples per pixel at most where a target error is given and the samples are not: the
-/// command line and Python use it as the cap.
+/// Samples per pixel at most where a target error is given and the samples are not.
 pub const MAX_SPP_FOR_TARGET: u32 = 1 << 20;
 
 /// Samples per pixel before a target error may end a render.
@@ -34,9 +33,8 @@ pub fn reached(film: &Film, spp: u32, e: f64) -> bool {
         return false;
     }
     let (value, error) = (film.develop(), film.develop_stderr());
-    let y = |x: &[f32]| -> f64 { (0..3).map(|c| LUMINANCE_WEIGHTS[c] as f64 * x[c] as f64).sum() };
     value.data.chunks_exact(3).zip(error.data.chunks_exact(3)).all(|(v, s)| {
-        let (v, s) = (y(v), y(s));
+        let (v, s) = (luminance_f64(v), luminance_f64(s));
         CONFIDENCE_Z * s <= e * v.abs() || (v == 0.0 && s == 0.0)
     })
 }

@@ -106,7 +106,11 @@ fn bad_work_planes_are_located_errors() {
             .unwrap_or_default()
     };
     let e = load(&scene("", "corner", 1));
-    assert!(e.contains("grid.xml:") && e.contains("'mode' must be one of point, cell"), "{e}");
+    assert!(
+        e.contains("grid.xml:")
+            && e.contains(r#"invalid mode "corner", must be one of: "point", "cell""#),
+        "{e}"
+    );
     let e = load(&scene("", "point", 1).replace(r#"value="4""#, r#"value="0""#));
     assert!(e.contains("'nx' must be a positive integer"), "{e}");
     let with_film = scene("", "point", 1).replace(

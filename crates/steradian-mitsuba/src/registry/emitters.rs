@@ -10,7 +10,7 @@ use steradian::geometry::Transform;
 use steradian::photometry::{parse_eulumdat, parse_ies, IntensityTable};
 use steradian::{Spectrum, Vec3};
 
-use super::{at, at_param, check_non_negative, lookup, Plugins};
+use super::{at, at_param, check_non_negative, lookup, required_string, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
@@ -142,12 +142,7 @@ fn build_ciesky(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadE
 /// steradian's `luminaire` (parameters and defaults: `steradian::emitter::Luminaire`).
 fn build_luminaire(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
-    let Some(filename) = p.get_string("filename")? else {
-        return Err(LoadError::at(
-            &node.pos,
-            format!("{}: missing parameter 'filename' (an .ies or .ldt file)", node.desc()),
-        ));
-    };
+    let filename = required_string(node, "filename", " (an .ies or .ldt file)")?;
     let at_file = |msg: String| {
         LoadError::at(
             p.position("filename").unwrap_or(&node.pos),
@@ -179,12 +174,7 @@ fn build_luminaire(b: &super::Builder, node: &PluginNode) -> Result<Emitter, Loa
 /// The `envmap` emitter (parameters and defaults: `steradian::emitter::EnvironmentMap`).
 fn build_envmap(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
-    let Some(filename) = p.get_string("filename")? else {
-        return Err(LoadError::at(
-            &node.pos,
-            format!("{}: missing parameter 'filename' (a lat-long image)", node.desc()),
-        ));
-    };
+    let filename = required_string(node, "filename", " (a lat-long image)")?;
     let scale = p.get_float("scale")?.unwrap_or(EnvironmentMap::DEFAULT_SCALE);
     let mis_compensation =
         p.get_bool("mis_compensation")?.unwrap_or(EnvironmentMap::DEFAULT_MIS_COMPENSATION);

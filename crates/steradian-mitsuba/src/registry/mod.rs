@@ -182,6 +182,42 @@ pub(crate) fn names<F>(plugins: &Plugins<F>) -> Vec<&'static str> {
     plugins.iter().map(|(name, _)| *name).collect()
 }
 
+/// A string property the plugin needs: "missing parameter" at the plugin when absent
+/// (`hint` says what it is, e.g. " (a lat-long image)", or is empty).
+pub(crate) fn required_string(
+    node: &PluginNode,
+    name: &str,
+    hint: &str,
+) -> Result<String, LoadError> {
+    node.props.get_string(name)?.ok_or_else(|| {
+        LoadError::at(&node.pos, format!("{}: missing parameter '{name}'{hint}", node.desc()))
+    })
+}
+
+/// One of the allowed values of a string property, at the property on error.
+pub(crate) fn choice<T: Copy>(
+    node: &PluginNode,
+    name: &str,
+    default: T,
+    options: &[(&str, T)],
+) -> Result<T, LoadError> {
+    let Some(v) = node.props.get_string(name)? else { return Ok(default) };
+    match options.iter().find(|(s, _)| *s == v) {
+        Some((_, t)) => Ok(*t),
+        None => {
+            let names: Vec<String> = options.iter().map(|(s, _)| format!("\"{s}\"")).collect();
+            Err(LoadError::at(
+                node.props.position(name).unwrap_or(&node.pos),
+                format!(
+                    "{}: invalid {name} \"{v}\", must be one of: {}",
+                    node.desc(),
+                    names.join(", ")
+                ),
+            ))
+        }
+    }
+}
+
 /// Converts a core-library error message into a loader error at `node`.
 pub(crate) fn at(node: &PluginNode) -> impl Fn(String) -> LoadError + '_ {
     move |msg| LoadError::at(&node.pos, format!("{}: {msg}", node.desc()))

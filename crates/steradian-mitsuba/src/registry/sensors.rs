@@ -15,7 +15,7 @@ use steradian::sensor::{
 };
 
 use super::field_of_view::field_of_view;
-use super::{at, at_param, geometry, lookup, Builder, Plugins};
+use super::{at, at_param, choice, geometry, lookup, Builder, Plugins};
 use crate::error::{LoadError, LoadWarning};
 use crate::tree::{ObjectTag, PluginNode};
 
@@ -254,23 +254,18 @@ fn workplane(
             ),
         ));
     }
-    let choice = |name: &str, options: &[&str], default: &str| -> Result<usize, LoadError> {
-        let v = p.get_string(name)?.unwrap_or_else(|| default.to_string());
-        options.iter().position(|o| *o == v).ok_or_else(|| {
-            LoadError::at(
-                p.position(name).unwrap_or(&node.pos),
-                format!(
-                    "{}: '{name}' must be one of {}, got '{v}'",
-                    node.desc(),
-                    options.join(", ")
-                ),
-            )
-        })
-    };
-    let mode =
-        [WorkplaneMode::Point, WorkplaneMode::Cell][choice("mode", &["point", "cell"], "point")?];
-    let unit = [WorkplaneUnit::Illuminance, WorkplaneUnit::Irradiance]
-        [choice("quantity", &["illuminance", "irradiance"], "illuminance")?];
+    let mode = choice(
+        node,
+        "mode",
+        Workplane::DEFAULT_MODE,
+        &[("point", WorkplaneMode::Point), ("cell", WorkplaneMode::Cell)],
+    )?;
+    let unit = choice(
+        node,
+        "quantity",
+        Workplane::DEFAULT_UNIT,
+        &[("illuminance", WorkplaneUnit::Illuminance), ("irradiance", WorkplaneUnit::Irradiance)],
+    )?;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let w = Workplane::new(to_world, nx, ny, mode, unit).map_err(at_param(node))?;
     Ok(SensorKind::Workplane(w))

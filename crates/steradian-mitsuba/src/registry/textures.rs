@@ -7,7 +7,9 @@ use steradian::texture::{
 };
 use steradian::Spectrum;
 
-use super::{at, check_non_negative, lookup, AttributeSource, Builder, Plugins};
+use super::{
+    at, check_non_negative, choice, lookup, required_string, AttributeSource, Builder, Plugins,
+};
 use crate::error::{LoadError, LoadWarning};
 use crate::properties::PropertyValue;
 use crate::tree::{ObjectTag, PluginNode};
@@ -109,30 +111,6 @@ fn to_uv(node: &PluginNode) -> Result<UvTransform, LoadError> {
         .map_or(UvTransform::IDENTITY, |t| UvTransform::from_mat4(&t.m)))
 }
 
-/// One of the allowed values of a string property, at the property on error.
-fn choice<T: Copy>(
-    node: &PluginNode,
-    name: &str,
-    default: T,
-    options: &[(&str, T)],
-) -> Result<T, LoadError> {
-    let Some(v) = node.props.get_string(name)? else { return Ok(default) };
-    match options.iter().find(|(s, _)| *s == v) {
-        Some((_, t)) => Ok(*t),
-        None => {
-            let names: Vec<String> = options.iter().map(|(s, _)| format!("\"{s}\"")).collect();
-            Err(LoadError::at(
-                node.props.position(name).unwrap_or(&node.pos),
-                format!(
-                    "{}: invalid {name} \"{v}\", must be one of: {}",
-                    node.desc(),
-                    names.join(", ")
-                ),
-            ))
-        }
-    }
-}
-
 /// Builds one texture from its node.
 type BuildTexture = fn(&Builder, &PluginNode) -> Result<Texture, LoadError>;
 
@@ -178,12 +156,7 @@ fn rawconstant(_: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
 
 fn bitmap(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
     let p = &node.props;
-    let Some(filename) = p.get_string("filename")? else {
-        return Err(LoadError::at(
-            &node.pos,
-            format!("{}: missing parameter 'filename'", node.desc()),
-        ));
-    };
+    let filename = required_string(node, "filename", "")?;
     let filter = choice(
         node,
         "filter_type",

@@ -36,6 +36,14 @@ pub fn luminance(s: Spectrum) -> f32 {
     s.dot(LUMINANCE_WEIGHTS)
 }
 
+/// [`luminance`] of an RGB pixel of an image's data (three values), in f64: for a standard
+/// error per channel it is the bound Σ w_c σ_c, exact when the channels' errors are perfectly
+/// correlated.
+#[inline]
+pub fn luminance_f64(rgb: &[f32]) -> f64 {
+    (0..3).map(|c| LUMINANCE_WEIGHTS[c] as f64 * rgb[c] as f64).sum()
+}
+
 /// True when every channel is finite.
 #[inline]
 pub fn is_finite(s: Spectrum) -> bool {

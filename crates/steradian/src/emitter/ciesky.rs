@@ -88,26 +88,7 @@ pub enum SkyLevel {
 impl SkyModel {
     /// L / L_z towards the unit direction `d` (sky frame); 0 below the horizon.
     pub fn relative_luminance(&self, d: Vec3) -> f64 {
-        let cos_z = d.y as f64;
-        if cos_z <= 0.0 {
-            return 0.0;
-        }
-        match *self {
-            SkyModel::Overcast => (1.0 + 2.0 * cos_z) / 3.0,
-            SkyModel::General { kind, sun } => {
-                let (ig, ii) = TYPES[kind as usize - 1];
-                let (a, b) = GRADATION[ig];
-                let (c, dd, e) = INDICATRIX[ii];
-                let phi = |cos_z: f64| if cos_z <= 0.0 { 1.0 } else { 1.0 + a * (b / cos_z).exp() };
-                let f = |chi: f64| {
-                    1.0 + c * ((dd * chi).exp() - (dd * std::f64::consts::FRAC_PI_2).exp())
-                        + e * chi.cos().powi(2)
-                };
-                let chi = (d.as_dvec3().dot(sun.as_dvec3())).clamp(-1.0, 1.0).acos();
-                let z_s = (sun.y as f64).clamp(-1.0, 1.0).acos();
-                f(chi) * phi(cos_z) / (f(z_s) * phi(1.0))
-            }
-        }
+        SkyShape::new(self).relative_luminance(d)
     }
 
     /// ∫ (L/L_z) cos Z dω over the sky: the horizontal illuminance per unit zenith luminance
@@ -117,19 +98,90 @@ impl SkyModel {
         if *self == SkyModel::Overcast {
             return 7.0 * std::f64::consts::PI / 9.0;
         }
-        let (nz, na) = (2048, 4096);
-        let mut sum = 0.0;
-        for i in 0..nz {
-            let mu = (i as f64 + 0.5) / nz as f64;
-            let s = (1.0 - mu * mu).sqrt();
-            for j in 0..na {
-                let phi = std::f64::consts::TAU * (j as f64 + 0.5) / na as f64;
-                let d = Vec3::new((s * phi.cos()) as f32, mu as f32, (s * phi.sin()) as f32);
-                sum += self.relative_luminance(d) * mu;
+        let shape = SkyShape::new(self);
+        cosine_integral(2048, 4096, |d| shape.relative_luminance(d))
+    }
+}
+
+/// A sky model with what its luminance divides by worked out once: the general sky's
+/// parameters and its normalisation f(Z_s) φ(0).
+enum SkyShape {
+    Overcast,
+    General { a: f64, b: f64, c: f64, d: f64, e: f64, sun: Vec3, exp_d_half_pi: f64, norm: f64 },
+}
+
+impl SkyShape {
+    fn new(model: &SkyModel) -> SkyShape {
+        match *model {
+            SkyModel::Overcast => SkyShape::Overcast,
+            SkyModel::General { kind, sun } => {
+                let (ig, ii) = TYPES[kind as usize - 1];
+                let (a, b) = GRADATION[ig];
+                let (c, d, e) = INDICATRIX[ii];
+                let exp_d_half_pi = (d * std::f64::consts::FRAC_PI_2).exp();
+                let z_s = (sun.y as f64).clamp(-1.0, 1.0).acos();
+                let mut shape = SkyShape::General { a, b, c, d, e, sun, exp_d_half_pi, norm: 1.0 };
+                let norm = shape.indicatrix(z_s) * shape.gradation(1.0);
+                if let SkyShape::General { norm: n, .. } = &mut shape {
+                    *n = norm;
+                }
+                shape
             }
         }
-        sum * std::f64::consts::TAU / (nz * na) as f64
     }
+
+    /// The gradation φ at cos Z (1 at and below the horizon).
+    fn gradation(&self, cos_z: f64) -> f64 {
+        match *self {
+            SkyShape::General { a, b, .. } if cos_z > 0.0 => 1.0 + a * (b / cos_z).exp(),
+            _ => 1.0,
+        }
+    }
+
+    /// The indicatrix f at the angle χ from the sun.
+    fn indicatrix(&self, chi: f64) -> f64 {
+        match *self {
+            SkyShape::General { c, d, e, exp_d_half_pi, .. } => {
+                1.0 + c * ((d * chi).exp() - exp_d_half_pi) + e * chi.cos().powi(2)
+            }
+            SkyShape::Overcast => 1.0,
+        }
+    }
+
+    fn relative_luminance(&self, dir: Vec3) -> f64 {
+        let cos_z = dir.y as f64;
+        if cos_z <= 0.0 {
+            return 0.0;
+        }
+        match *self {
+            SkyShape::Overcast => (1.0 + 2.0 * cos_z) / 3.0,
+            SkyShape::General { sun, norm, .. } => {
+                let chi = (dir.as_dvec3().dot(sun.as_dvec3())).clamp(-1.0, 1.0).acos();
+                self.indicatrix(chi) * self.gradation(cos_z) / norm
+            }
+        }
+    }
+}
+
+/// ∫ g(ω) cos Z dω over the upper hemisphere (+y up) by the midpoint rule on nz × na cells of
+/// (cos Z, azimuth).
+fn cosine_integral(nz: usize, na: usize, g: impl Fn(Vec3) -> f64) -> f64 {
+    let azimuths: Vec<(f64, f64)> = (0..na)
+        .map(|j| {
+            let phi = std::f64::consts::TAU * (j as f64 + 0.5) / na as f64;
+            (phi.cos(), phi.sin())
+        })
+        .collect();
+    let mut sum = 0.0;
+    for i in 0..nz {
+        let mu = (i as f64 + 0.5) / nz as f64;
+        let s = (1.0 - mu * mu).sqrt();
+        for &(cos_phi, sin_phi) in &azimuths {
+            let d = Vec3::new((s * cos_phi) as f32, mu as f32, (s * sin_phi) as f32);
+            sum += g(d) * mu;
+        }
+    }
+    sum * std::f64::consts::TAU / (nz * na) as f64
 }
 
 /// The sky as an environment light (see the module docs); `to_world` takes the sky frame to
@@ -162,6 +214,7 @@ pub fn cie_sky(
     if !(zenith.0.is_finite() && zenith.0 >= 0.0) {
         return Err(ParamError::new(zenith.1, "the sky's level must be finite and non-negative"));
     }
+    let shape = SkyShape::new(&model);
     let (w, h) = TABLE;
     let mut data = Vec::with_capacity(w * h);
     for j in 0..h {
@@ -174,7 +227,7 @@ pub fn cie_sky(
                 theta.cos() as f32,
                 (-theta.sin() * phi.cos()) as f32,
             );
-            data.push((model.relative_luminance(d) * zenith.0 / LUMENS_PER_WATT as f64) as f32);
+            data.push((shape.relative_luminance(d) * zenith.0 / LUMENS_PER_WATT as f64) as f32);
         }
     }
     let image = LoadedImage { width: w, height: h, channels: 1, data, format: ImageFormat::Exr };
@@ -205,16 +258,8 @@ mod tests {
         let toward = Vec3::new(0.8, 0.6, 0.0);
         let away = Vec3::new(-0.8, 0.6, 0.0);
         assert!(t12.relative_luminance(toward) > 3.0 * t12.relative_luminance(away));
-        // the quadrature reproduces the overcast closed form when given the same function
-        let numeric = {
-            let (nz, na) = (2048, 8);
-            let mut sum = 0.0;
-            for i in 0..nz {
-                let mu = (i as f64 + 0.5) / nz as f64;
-                sum += (1.0 + 2.0 * mu) / 3.0 * mu * na as f64;
-            }
-            sum * std::f64::consts::TAU / (nz * na) as f64
-        };
+        // the quadrature of the general skies reproduces the overcast closed form
+        let numeric = cosine_integral(2048, 8, |d| SkyModel::Overcast.relative_luminance(d));
         assert!((numeric / SkyModel::Overcast.horizontal_factor() - 1.0).abs() < 1e-6);
     }
 
@@ -228,18 +273,8 @@ mod tests {
             let env =
                 cie_sky(model, SkyLevel::HorizontalIlluminance(10_000.0), &Transform::IDENTITY)
                     .unwrap();
-            let (nz, na) = (512, 1024);
-            let mut sum = 0.0f64;
-            for i in 0..nz {
-                let mu = (i as f64 + 0.5) / nz as f64;
-                let s = (1.0 - mu * mu).sqrt();
-                for j in 0..na {
-                    let phi = std::f64::consts::TAU * (j as f64 + 0.5) / na as f64;
-                    let d = Vec3::new((s * phi.cos()) as f32, mu as f32, (s * phi.sin()) as f32);
-                    sum += env.radiance(d).y as f64 * mu;
-                }
-            }
-            let lux = sum * std::f64::consts::TAU / (nz * na) as f64 * LUMENS_PER_WATT as f64;
+            let lux =
+                cosine_integral(512, 1024, |d| env.radiance(d).y as f64) * LUMENS_PER_WATT as f64;
             let tol = if model == SkyModel::Overcast { 2e-5 } else { 2e-3 };
             assert!((lux / 10_000.0 - 1.0).abs() < tol, "{model:?}: {lux} lx");
         }

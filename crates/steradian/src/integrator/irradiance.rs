@@ -16,12 +16,12 @@
 
 use std::f32::consts::PI;
 
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 
 use super::mis::power_heuristic;
 use super::{EmitterVisibility, Integrator};
 use crate::emitter::{Emitter, Support};
-use crate::geometry::{offset_ray_origin, Frame, Ray, SurfacePoint};
+use crate::geometry::{offset_ray_origin, Frame, Ray};
 use crate::sampling::{warp, PixelSampler};
 use crate::scene::Scene;
 use crate::Spectrum;
@@ -110,14 +110,12 @@ pub fn estimate_irradiance(
         None => {
             if let Some(env) = scene.environment {
                 let emitter = &scene.emitters[env as usize];
-                let le = emitter.radiance(-wi, Vec3::ZERO, Vec2::ZERO);
+                // one lookup for the radiance and the light-sampling density
+                let (le, pdf_e) = emitter.radiance_and_pdf_from(wi);
                 // a `constant` sky is not light-sampled here (see the module docs): weight 1
                 let w = match emitter {
                     Emitter::Constant(_) => 1.0,
-                    _ => power_heuristic(
-                        pdf,
-                        emitter.pdf_direction(&scene.shapes, p, wi, &SurfacePoint::AT_INFINITY),
-                    ),
+                    _ => power_heuristic(pdf, pdf_e),
                 };
                 h += le * (PI * w);
             }

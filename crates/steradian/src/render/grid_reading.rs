@@ -13,7 +13,7 @@
 use super::RenderOutput;
 use crate::emitter::LUMENS_PER_WATT;
 use crate::sensor::WorkplaneUnit;
-use crate::spectrum::LUMINANCE_WEIGHTS;
+use crate::spectrum::luminance_f64;
 
 /// A value and its standard error.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -70,10 +70,7 @@ impl GridReading {
             .map(|(v, e)| match unit {
                 WorkplaneUnit::Illuminance => {
                     let k = LUMENS_PER_WATT as f64;
-                    let y = |x: &[f32]| -> f64 {
-                        (0..3).map(|c| LUMINANCE_WEIGHTS[c] as f64 * x[c] as f64).sum()
-                    };
-                    (k * y(v), k * y(e))
+                    (k * luminance_f64(v), k * luminance_f64(e))
                 }
                 // the channels' mean, as `measure` reports a grey irradiance
                 WorkplaneUnit::Irradiance => {

@@ -128,7 +128,13 @@ fn invert(cdf: &[f32], guide: &[u32], u: f32) -> (f32, usize, f32) {
     let i = find_cell(cdf, guide, u);
     let width = cdf[i + 1] - cdf[i];
     let t = if width > 0.0 { ((u - cdf[i]) / width).clamp(0.0, 1.0) } else { 0.5 };
-    (((i as f32 + t) / n as f32).min(1.0 - f32::EPSILON / 2.0), i, t)
+    (cell_point(i, t, n), i, t)
+}
+
+/// The point (i + t)/n of [0, 1) at fraction t of cell i of n.
+#[inline]
+fn cell_point(i: usize, t: f32, n: usize) -> f32 {
+    ((i as f32 + t) / n as f32).min(1.0 - f32::EPSILON / 2.0)
 }
 
 /// A cell drawn by [`PiecewiseConstant2D::sample_cell`].
@@ -190,11 +196,13 @@ impl PiecewiseConstant2D {
     /// Draws (u, v) from two uniforms; returns the point and its density on [0, 1]².
     #[inline]
     pub fn sample(&self, u: [f32; 2]) -> ([f32; 2], f32) {
-        let nv = self.nv;
-        let (x, _, iu) = self.marginal.sample(u[0]);
-        let cdf = &self.cdf[iu * (nv + 1)..(iu + 1) * (nv + 1)];
-        let (y, iv, _) = invert(cdf, &self.guide[iu * nv..(iu + 1) * nv], u[1]);
-        ([x, y], self.density[iu * nv + iv])
+        let c = self.sample_cell(u);
+        let [iu, iv] = c.cell;
+        let p = [
+            cell_point(iu, c.offset[0], self.marginal.len()),
+            cell_point(iv, c.offset[1], self.nv),
+        ];
+        (p, c.density)
     }
 
     /// Draws a cell from two uniforms: its row and column, the position of the uniforms inside

@@ -141,6 +141,61 @@ fn ply_binary_with_normals_and_uvs() {
     }
 }
 
+/// Less common binary layouts: big-endian `ushort` counts with `short` indices, `int8` and
+/// `float64` aliases, a list property among the vertex's (skipped), an element between the
+/// vertices and the faces, polygons, and a face attribute; read as their ASCII twin reads.
+#[test]
+fn ply_binary_layouts_read_as_ascii() {
+    let dir = temp_dir("shape-ply-binary-layouts-read-as-ascii");
+    let header = |format: &str| {
+        format!(
+            "ply\nformat {format} 1.0\nelement vertex 4\nproperty float64 x\nproperty float y\n\
+property list uchar int8 tags\nproperty float z\nelement edge 1\nproperty int a\nproperty int b\n\
+element face 2\nproperty list ushort short vertex_indices\nproperty uchar q_0\nend_header\n"
+        )
+    };
+    let ascii = header("ascii")
+        + "0 0 2 5 -1 0\n1 0 0 1\n1 1 1 7 1\n0 1 0 1\n0 1\n4 0 1 2 3 9\n3 3 2 1 200\n";
+    let mut big = header("binary_big_endian").into_bytes();
+    for (x, y, tags, z) in [
+        (0.0f64, 0.0f32, &[5i8, -1][..], 0.0f32),
+        (1.0, 0.0, &[], 1.0),
+        (1.0, 1.0, &[7], 1.0),
+        (0.0, 1.0, &[], 1.0),
+    ] {
+        big.extend(x.to_be_bytes());
+        big.extend(y.to_be_bytes());
+        big.push(tags.len() as u8);
+        big.extend(tags.iter().map(|&t| t as u8));
+        big.extend(z.to_be_bytes());
+    }
+    big.extend(0i32.to_be_bytes());
+    big.extend(1i32.to_be_bytes());
+    for (face, q) in [(&[0i16, 1, 2, 3][..], 9u8), (&[3, 2, 1], 200)] {
+        big.extend((face.len() as u16).to_be_bytes());
+        for &i in face {
+            big.extend(i.to_be_bytes());
+        }
+        big.push(q);
+    }
+    let (a, a_attrs) =
+        read_ply_with_attributes(&write_file(&dir, "a.ply", ascii.as_bytes())).unwrap();
+    let (b, b_attrs) = read_ply_with_attributes(&write_file(&dir, "b.ply", &big)).unwrap();
+    assert_eq!(a, b);
+    assert_eq!(a.indices, vec![[0, 1, 2], [0, 2, 3], [3, 2, 1]]);
+    assert_eq!(a.positions[2], Vec3::new(1.0, 1.0, 1.0));
+    assert_eq!(a_attrs, b_attrs);
+    // the face attribute holds for each triangle of its polygon
+    let q = a_attrs.iter().find(|x| x.name == "face_q").unwrap();
+    assert_eq!(q.values, vec![9.0, 9.0, 200.0]);
+    // a list count beyond the file is an error, not an allocation
+    let mut huge = big.clone();
+    let at = huge.len() - 1 - 2 * 3 - 2;
+    huge[at..at + 2].copy_from_slice(&u16::MAX.to_be_bytes());
+    let e = read_ply(&write_file(&dir, "huge.ply", &huge)).unwrap_err();
+    assert!(e.to_string().contains("ends early"), "{e}");
+}
+
 #[test]
 fn ply_errors_never_panic() {
     let dir = temp_dir("shape-ply-errors-never-panic");

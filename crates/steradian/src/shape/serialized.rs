@@ -30,9 +30,9 @@
 //!
 //! Shape 0 is read from the start of the file without consulting the table (as Mitsuba does,
 //! so a file without one still loads); any other `shape_index` is looked up in the table, and
-//! the header at that offset must repeat the file's format id and version. The decompressed
-//! arrays are converted in bulk (one pass per array, no per-vertex allocation); the stream's
-//! Adler-32 checksum is verified. When the file has no normals and `face_normals` is false,
+//! the header at that offset must repeat the file's format id and version. Each array is
+//! decoded into its final form as the stream inflates (no per-vertex allocation, and no copy
+//! of the whole inflated shape); the stream's Adler-32 checksum is verified. When the file has no normals and `face_normals` is false,
 //! smooth angle-weighted vertex normals are computed, as in Mitsuba (see [`Mesh`](super::Mesh));
 //! texture coordinates are used as stored (no v flip).
 //!
@@ -233,18 +233,28 @@ fn read_shape<R: Read>(
                  {available} remaining bytes can hold (corrupt header?)"
             )
         })?;
-    let mut buf = Vec::with_capacity(needed as usize);
-    (&mut z)
-        .take(needed)
-        .read_to_end(&mut buf)
-        .map_err(|e| io_message(e, &format!("shape {index}'s data")))?;
-    if (buf.len() as u64) < needed {
-        return Err(format!(
-            "truncated: shape {index} holds {} of the {needed} bytes its {nv} vertices and {nf} \
-             triangles need",
-            buf.len()
-        ));
+    // each section is decoded straight into its final array as it inflates: no copy of the
+    // whole inflated shape is ever held
+    let nv = nv as usize;
+    let double = scalar == 8;
+    let mut section = Section { z: &mut z, index, needed };
+    let s = scalar as usize;
+    let positions = section.records(nv, 3 * s, |b| vec3(b, double))?;
+    let normals = match flags & HAS_NORMALS {
+        0 => None,
+        _ => Some(section.records(nv, 3 * s, |b| vec3(b, double))?),
+    };
+    let uvs = match flags & HAS_TEXCOORDS {
+        0 => None,
+        _ => Some(section.records(nv, 2 * s, |b| vec2(b, double))?),
+    };
+    if flags & HAS_COLORS != 0 {
+        section.records(nv, 3 * s, |_| ())?;
     }
+    let indices = section.records(nf as usize, 12, |c| {
+        let i = |k: usize| u32::from_le_bytes(c[k..k + 4].try_into().expect("12-byte records"));
+        [i(0), i(4), i(8)]
+    })?;
     // Reading on to the end of the stream makes the decoder check the Adler-32 checksum;
     // data after the arrays (none in files Mitsuba writes) is ignored, as Mitsuba does.
     let mut rest = [0u8; 64];
@@ -255,28 +265,6 @@ fn read_shape<R: Read>(
             Err(e) => return Err(io_message(e, &format!("the end of shape {index}'s stream"))),
         }
     }
-
-    let nv = nv as usize;
-    let double = scalar == 8;
-    let mut at = 0usize;
-    let mut take = |components: usize| {
-        let bytes = &buf[at..at + nv * components * scalar as usize];
-        at += bytes.len();
-        bytes
-    };
-    let positions = vec3s(take(3), double);
-    let normals = (flags & HAS_NORMALS != 0).then(|| vec3s(take(3), double));
-    let uvs = (flags & HAS_TEXCOORDS != 0).then(|| vec2s(take(2), double));
-    if flags & HAS_COLORS != 0 {
-        take(3);
-    }
-    let indices: Vec<[u32; 3]> = buf[at..]
-        .chunks_exact(12)
-        .map(|c| {
-            let i = |k: usize| u32::from_le_bytes(c[k..k + 4].try_into().unwrap());
-            [i(0), i(4), i(8)]
-        })
-        .collect();
     if let Some((f, bad)) = indices
         .iter()
         .enumerate()
@@ -290,27 +278,60 @@ fn read_shape<R: Read>(
     Ok(SerializedShape { name, data: MeshData { positions, normals, uvs, indices } })
 }
 
-fn scalars(bytes: &[u8], double: bool) -> impl Iterator<Item = f32> + '_ {
-    let size = if double { 8 } else { 4 };
-    bytes.chunks_exact(size).map(move |c| {
-        if double {
-            f64::from_le_bytes(c.try_into().unwrap()) as f32
-        } else {
-            f32::from_le_bytes(c.try_into().unwrap())
+/// The inflated arrays of one shape, read in order.
+struct Section<'a, R: Read> {
+    z: &'a mut R,
+    index: u32,
+    /// Bytes all arrays take.
+    needed: u64,
+}
+
+impl<R: Read> Section<'_, R> {
+    /// The next `n` records of `size` bytes, each decoded by `decode`.
+    fn records<T>(
+        &mut self,
+        n: usize,
+        size: usize,
+        decode: impl Fn(&[u8]) -> T,
+    ) -> Result<Vec<T>, String> {
+        const CHUNK_RECORDS: usize = 1 << 14;
+        let mut out = Vec::with_capacity(n);
+        let mut buf = vec![0u8; size * CHUNK_RECORDS.min(n)];
+        let mut left = n;
+        while left > 0 {
+            let k = left.min(CHUNK_RECORDS);
+            let bytes = &mut buf[..k * size];
+            self.z.read_exact(bytes).map_err(|e| {
+                if e.kind() == std::io::ErrorKind::UnexpectedEof {
+                    format!(
+                        "truncated: shape {} holds fewer than the {} bytes its arrays need",
+                        self.index, self.needed
+                    )
+                } else {
+                    io_message(e, &format!("shape {}'s data", self.index))
+                }
+            })?;
+            out.extend(bytes.chunks_exact(size).map(&decode));
+            left -= k;
         }
-    })
+        Ok(out)
+    }
 }
 
-fn vec3s(bytes: &[u8], double: bool) -> Vec<Vec3> {
-    let mut it = scalars(bytes, double);
-    let n = bytes.len() / if double { 24 } else { 12 };
-    (0..n).map(|_| Vec3::new(it.next().unwrap(), it.next().unwrap(), it.next().unwrap())).collect()
+fn scalar_at(bytes: &[u8], k: usize, double: bool) -> f32 {
+    if double {
+        f64::from_le_bytes(bytes[8 * k..8 * k + 8].try_into().expect("sized record")) as f32
+    } else {
+        f32::from_le_bytes(bytes[4 * k..4 * k + 4].try_into().expect("sized record"))
+    }
 }
 
-fn vec2s(bytes: &[u8], double: bool) -> Vec<Vec2> {
-    let mut it = scalars(bytes, double);
-    let n = bytes.len() / if double { 16 } else { 8 };
-    (0..n).map(|_| Vec2::new(it.next().unwrap(), it.next().unwrap())).collect()
+fn vec3(bytes: &[u8], double: bool) -> Vec3 {
+    Vec3::new(scalar_at(bytes, 0, double), scalar_at(bytes, 1, double), scalar_at(bytes, 2, double))
+}
+
+fn vec2(bytes: &[u8], double: bool) -> Vec2 {
+    Vec2::new(scalar_at(bytes, 0, double), scalar_at(bytes, 1, double))
 }
 
 #[cfg(test)]

@@ -180,6 +180,15 @@ impl Shape {
         }
     }
 
+    /// Makes the tables that sampling points on the surface needs (a mesh's area CDF, made
+    /// otherwise at the first sample): the scene calls it for the shapes that emit.
+    pub fn prepare_sampling(&self) {
+        match self {
+            Shape::Mesh(m) => m.prepare_sampling(),
+            Shape::Rectangle(_) | Shape::Disk(_) | Shape::Sphere(_) | Shape::Cylinder(_) => {}
+        }
+    }
+
     /// Surface area, m².
     pub fn surface_area(&self) -> f32 {
         match self {

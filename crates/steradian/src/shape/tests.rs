@@ -617,3 +617,62 @@ fn mesh_sampling() {
     assert!((c.surface_area() - 8.0 * (2.0 + 0.5 + 1.0)).abs() < 1e-4);
     check_sampling(&c, on, t.point(Vec3::new(0.2, -0.5, 0.1)), 4.0 * PI64, true, 10);
 }
+
+/// Smooth vertex normals are Mitsuba's angle-weighted sums (each face's unit normal times its
+/// angle at the vertex, the angle from acos of the normalised edges, here in f64) to 1e-5, and
+/// the same bits on any number of threads.
+#[test]
+fn smooth_normals_are_angle_weighted_on_any_thread_count() {
+    let mut r = crate::sampling::Pcg32::new(5, 2);
+    let n = 160u32; // 51,200 triangles: more vertices than one thread's share
+    let mut pos = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let jitter = Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) * 0.3;
+            pos.push(
+                Vec3::new(i as f32, j as f32, 0.0) + jitter + Vec3::Z * (i as f32 * 0.2).sin(),
+            );
+        }
+    }
+    let mut idx = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let v = j * (n + 1) + i;
+            idx.push([v, v + 1, v + n + 2]);
+            idx.push([v, v + n + 2, v + n + 1]);
+        }
+    }
+    let mut want = vec![glam::DVec3::ZERO; pos.len()];
+    for tri in &idx {
+        let v = tri.map(|i| pos[i as usize].as_dvec3());
+        let nf = (v[1] - v[0]).cross(v[2] - v[0]).normalize();
+        for k in 0..3 {
+            let d0 = (v[(k + 1) % 3] - v[k]).normalize();
+            let d1 = (v[(k + 2) % 3] - v[k]).normalize();
+            want[tri[k] as usize] += nf * d0.dot(d1).clamp(-1.0, 1.0).acos();
+        }
+    }
+    let build = |threads: usize| {
+        rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(|| {
+            Mesh::new(pos.clone(), None, None, idx.clone(), &Transform::IDENTITY, false, false)
+                .unwrap()
+        })
+    };
+    let one = build(1);
+    let normals = one.normals.as_ref().unwrap();
+    for (got, want) in normals.iter().zip(&want) {
+        assert!((got.as_dvec3() - want.normalize()).length() < 1e-5, "{got} vs {want}");
+    }
+    for threads in [2, 3] {
+        let other = build(threads);
+        let bits = |m: &Mesh| {
+            m.normals
+                .as_ref()
+                .unwrap()
+                .iter()
+                .map(|n| n.to_array().map(f32::to_bits))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(bits(&one), bits(&other), "{threads} threads");
+    }
+}

@@ -63,8 +63,8 @@ def main(path):
         print(f"\nlowest 2-thread ratio: {worst[0]:.2f} ({worst[1]}, {worst[2]}); target >= 0.67")
 
     print("\n### Build (best round) and memory\n")
-    print("| mesh | library | triangles | build s | MTris/s | BVH MiB | BVH B/tri | mesh B/tri | total B/tri |")
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    print("| mesh | library | triangles | build s | MTris/s | BVH MiB | BVH B/tri | mesh B/tri | total B/tri | SAH cost |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|")
     for mesh in meshes:
         for lib in ["embree", "steradian"]:
             b = builds.get((lib, mesh))
@@ -79,7 +79,7 @@ def main(path):
             if lib == "embree":
                 mesh_b = next((float(x["bytes_per_tri_mesh"]) for x in builds.get(("steradian", mesh), [])), float("nan"))
             print(f"| {mesh} | {lib} | {tris:,} | {float(f['sec']):.3f} | {float(f['mtris_per_s']):.2f} | {bvh_mb:.1f} | "
-                  f"{bvh_b:.1f} | {mesh_b:.1f} | {bvh_b + mesh_b:.1f} |")
+                  f"{bvh_b:.1f} | {mesh_b:.1f} | {bvh_b + mesh_b:.1f} | {f.get('sah_cost', '-')} |")
 
 
 if __name__ == "__main__":

@@ -195,7 +195,7 @@ fn main() {
     let mesh_bytes = 12 * nv + 12 * nt;
     println!(
         "BUILD lib=steradian isa={:?} mesh={name} tris={nt} build_threads={} sec={build_s:.4} mtris_per_s={:.3} bvh_mb={:.1} \
-         nodes={} packets={} packet_fill={:.3} bytes_per_tri_bvh={:.1} bytes_per_tri_mesh={:.1} bytes_per_tri_total={:.1}",
+         nodes={} packets={} packet_fill={:.3} bytes_per_tri_bvh={:.1} bytes_per_tri_mesh={:.1} bytes_per_tri_total={:.1} sah_cost={:.2}",
         accel.isa(),
         rayon::current_num_threads(),
         nt as f64 / build_s / 1e6,
@@ -206,6 +206,7 @@ fn main() {
         stats.bytes as f64 / nt as f64,
         mesh_bytes as f64 / nt as f64,
         (stats.bytes + mesh_bytes) as f64 / nt as f64,
+        stats.sah_cost,
     );
 
     for set in &sets {

@@ -6,7 +6,7 @@
 //! distance uses the reciprocal direction rounded up by `1 + 8ε` (ε = 2⁻²⁴), which bounds the
 //! rounding of `(b − o)·(1/d)` so that a box the ray touches is never culled.
 
-use super::wide::{Node8, Tri4, WIDTH};
+use super::layout::{Node8, Tri4, WIDTH};
 use crate::geometry::triangle::WatertightRay;
 use crate::geometry::Ray;
 

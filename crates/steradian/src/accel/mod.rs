@@ -1,11 +1,12 @@
 //! Ray-tracing acceleration: an 8-wide bounding volume hierarchy over the primitives of all
 //! shapes, traversed with SIMD node and triangle tests.
 //!
-//! - Build (`sah_build.rs`): binned SAH (32 bins) over primitive boxes, subtrees and large
-//!   binning passes in parallel with rayon; the SAH counts triangles in packets of 4. Leaves
-//!   hold up to 8 primitives, all triangles or all analytic shapes.
-//! - Layout (`wide.rs`): the binary tree is collapsed to an 8-wide BVH (on AVX2 one 256-bit test
-//!   covers all children of a node). Nodes are 256 bytes, boxes in SoA layout; triangles are
+//! - Build: binned SAH (32 bins) over primitive boxes (`sah_build.rs`), taken top-down straight
+//!   into 8-wide nodes (`wide_build.rs`), subtrees and large binning passes in parallel with
+//!   rayon; the SAH counts triangles in packets of 4. Leaves hold up to 8 primitives, all
+//!   triangles or all analytic shapes.
+//! - Layout (`layout.rs`): an 8-wide BVH (on AVX2 one 256-bit test covers all children of a
+//!   node). Nodes are 256 bytes, boxes in SoA layout; triangles are
 //!   copied in leaf order into 4-wide SoA packets of 144 bytes, with the shape and primitive
 //!   ids of their lanes in a parallel array (32 bytes per packet), so traversal never reads the
 //!   mesh (sizes asserted in `wide.rs`). Rectangles enter as their two triangles
@@ -26,10 +27,12 @@
 
 mod instance;
 mod kernel;
+mod layout;
 mod sah_build;
 mod simd;
 mod traverse;
 mod wide;
+mod wide_build;
 
 pub use instance::{Instance, ShapeGroup};
 pub use wide::{Accel, AccelStats, Isa};

@@ -1,113 +1,185 @@
-//! Binned-SAH build of a binary BVH (Wald, "On fast Construction of SAH-based Bounding Volume
-//! Hierarchies", 2007), in parallel: subtrees are built with `rayon::join`, and the binning of
-//! large nodes is split over threads too.
+//! Binned SAH splitting of primitive ranges (Wald, "On fast Construction of SAH-based Bounding
+//! Volume Hierarchies", 2007): the decision the builder (`wide_build.rs`) takes at every range,
+//! whether it becomes a leaf or two halves, and where the halves meet.
 //!
-//! The binary tree is only an intermediate: `wide.rs` collapses it into the 8-wide BVH that is
-//! traversed. The SAH cost counts triangles in packets of [`TRI_BLOCK`] (a leaf of 5 triangles
-//! costs as much as one of 8, they are stored 4 to a packet), as Embree does. Traversal tests a
-//! leaf's packets in pairs, 8 lanes at a time (`simd.rs`), but costing leaves by pairs (blocks
-//! of 8) did not change render times on the reference scenes (cornell +0.5 %, materials
-//! −3.2 %, veach +0.1 %, within noise; 2026-12-02, AMD EPYC, 2 cores), so the cost stays that
-//! of 4-triangle packets.
+//! The SAH cost counts triangles in packets of [`TRI_BLOCK`] (a leaf of 5 triangles costs as
+//! much as one of 8, they are stored 4 to a packet), as Embree does. Traversal tests a leaf's
+//! packets in pairs, 8 lanes at a time (`simd.rs`), but costing leaves by pairs (blocks of 8)
+//! did not change render times on the reference scenes (cornell +0.5 %, materials −3.2 %,
+//! veach +0.1 %, within noise; 2026-12-02, AMD EPYC, 2 cores), so the cost stays that of
+//! 4-triangle packets.
+//!
+//! What makes it fast on large inputs (a 20-million-triangle mesh): a primitive is 32 bytes
+//! (its box, with the shape and primitive indices in the boxes' spare lanes); centroids are
+//! box centres kept doubled (`lower + upper`, no multiply); the bins are SIMD boxes; the
+//! partition swaps from both ends and accumulates the two halves' boxes and centroid boxes as
+//! it goes, so no range is scanned again for its extent; large ranges bin in parallel.
 
-use glam::Vec3;
+use glam::{Vec3, Vec3A};
 use rayon::prelude::*;
 
-use crate::geometry::is_positive;
-use crate::geometry::Aabb;
+use crate::geometry::{is_positive, Aabb};
 
-/// Number of SAH bins per axis.
+/// Most SAH bins per axis; a range of n primitives gets min(4 + n/20, 32), as Embree's
+/// binned builder does: a small range's best split is found with few bins, and resetting and
+/// sweeping 32 bins for each of millions of small ranges was most of a large build (a
+/// 20-million-triangle sphere: 7.8 s with 32 bins everywhere).
 const BINS: usize = 32;
+
+/// Bins for a range of `count` primitives.
+fn bin_count(count: usize) -> usize {
+    (4 + count / 20).min(BINS)
+}
 /// Largest leaf, in primitives.
 pub(super) const MAX_LEAF: usize = 8;
 /// Triangles are stored 4 to a packet.
 pub(super) const TRI_BLOCK: usize = 4;
 /// Cost of one node visit relative to one triangle-packet test.
 const TRAVERSAL_COST: f32 = 1.0;
-/// A leaf's refinement that adds triangle packets is kept only where it brings the leaf's
-/// expected tests below this fraction of the whole leaf's (see `refined_leaf`).
-const REFINE_GROWTH_GAIN: f32 = 0.75;
-/// Beyond this depth nodes are split at the object median: the depth stays bounded (and with it
-/// the traversal stack) whatever the input.
+/// Beyond this depth ranges are split at the object median: the depth stays bounded (and with
+/// it the traversal stack) whatever the input.
 pub(super) const SAH_MAX_DEPTH: usize = 40;
-/// Nodes with more primitives than this are built in parallel.
-const PARALLEL_MIN: usize = 4096;
-/// Nodes with more primitives than this also bin in parallel.
+/// Ranges with more primitives than this bin in parallel.
 const PARALLEL_BINNING_MIN: usize = 65536;
 
-/// A primitive as the builder sees it.
+/// Marks an analytic primitive (not a triangle) in [`BuildPrim`]'s primitive word.
+const ANALYTIC_PRIM: u32 = 1 << 31;
+
+/// A primitive as the builder sees it: its box, and who it is (32 bytes, so that a partition
+/// moves half the bytes of a box-centroid-ids layout).
 #[derive(Clone, Copy, Debug)]
+#[repr(C, align(16))]
 pub(super) struct BuildPrim {
-    pub bounds: Aabb,
-    pub centroid: Vec3,
-    pub shape: u32,
-    pub prim: u32,
-    /// Triangles are packed 4 to a leaf packet; other primitives are tested one by one.
-    pub is_triangle: bool,
+    lower: [f32; 3],
+    shape: u32,
+    upper: [f32; 3],
+    /// Primitive index, with [`ANALYTIC_PRIM`] set for analytic primitives.
+    prim: u32,
 }
 
-/// A node of the binary tree. Leaves cover `prims[start..start + count]`, all of one kind.
-///
-/// A leaf of several primitives also carries `refined`: the SAH's best split of it, itself made
-/// of refined leaves. The SAH prices a split at one more node visit, but the collapse to
-/// [`WIDTH`](super::wide::WIDTH)-wide nodes tests all children of a wide node at once, so where
-/// a wide node has a child slot to spare the split costs no visit at all and lets the box test
-/// cull part of the leaf. The collapse uses refinements only there (`wide.rs`).
-#[derive(Debug)]
-pub(super) enum BinaryNode {
-    Leaf {
-        bounds: Aabb,
-        start: usize,
-        count: usize,
-        triangles: bool,
-        refined: Option<Box<[BinaryNode; 2]>>,
-    },
-    Inner {
-        bounds: Aabb,
-        children: Box<[BinaryNode; 2]>,
-    },
-}
+const _: () = assert!(std::mem::size_of::<BuildPrim>() == 32);
 
-/// When [`sah_split`] may answer that a leaf is cheaper.
-#[derive(Clone, Copy, PartialEq, Eq)]
-enum SplitPolicy {
-    /// The SAH's choice: `None` where a leaf costs less than the best split.
-    LeafIfCheaper,
-    /// The best split whatever it costs (`None` only where no bin boundary separates the
-    /// centroids): the refinement of a leaf.
-    Always,
-}
-
-impl BinaryNode {
-    pub fn bounds(&self) -> &Aabb {
-        match self {
-            BinaryNode::Leaf { bounds, .. } | BinaryNode::Inner { bounds, .. } => bounds,
+impl BuildPrim {
+    /// A primitive; `triangle` tells whether it is stored in a triangle packet.
+    pub fn new(bounds: &Aabb, shape: u32, prim: u32, triangle: bool) -> BuildPrim {
+        debug_assert!(prim & ANALYTIC_PRIM == 0);
+        BuildPrim {
+            lower: bounds.min.to_array(),
+            shape,
+            upper: bounds.max.to_array(),
+            prim: prim | if triangle { 0 } else { ANALYTIC_PRIM },
         }
     }
 
-    /// An inner node's two children.
-    pub fn children(&self) -> Option<&[BinaryNode; 2]> {
-        match self {
-            BinaryNode::Inner { children, .. } => Some(children),
-            BinaryNode::Leaf { .. } => None,
-        }
+    pub fn shape(&self) -> u32 {
+        self.shape
     }
 
-    /// A leaf's refinement.
-    pub fn refinement(&self) -> Option<&[BinaryNode; 2]> {
-        match self {
-            BinaryNode::Leaf { refined, .. } => refined.as_deref(),
-            BinaryNode::Inner { .. } => None,
-        }
+    pub fn prim(&self) -> u32 {
+        self.prim & !ANALYTIC_PRIM
+    }
+
+    pub fn is_triangle(&self) -> bool {
+        self.prim & ANALYTIC_PRIM == 0
+    }
+
+    /// Whether the box is non-empty and finite (degenerate data is left out of the tree).
+    pub fn is_valid(&self) -> bool {
+        let (l, u) = (Vec3::from(self.lower), Vec3::from(self.upper));
+        l.is_finite() && u.is_finite() && l.cmple(u).all()
+    }
+
+    #[inline(always)]
+    fn lower(&self) -> Vec3A {
+        Vec3A::from_array(self.lower)
+    }
+
+    #[inline(always)]
+    fn upper(&self) -> Vec3A {
+        Vec3A::from_array(self.upper)
+    }
+
+    /// Twice the box centre.
+    #[inline(always)]
+    fn centroid2(&self) -> Vec3A {
+        self.lower() + self.upper()
     }
 }
 
-/// Builds the tree over `prims`, reordering them so that every leaf is a contiguous range.
-pub(super) fn build(prims: &mut [BuildPrim]) -> BinaryNode {
-    build_node(prims, 0, 0)
+/// What the builder knows of a range without looking at it again: the union of its boxes, the
+/// box of its (doubled) centroids, and how many of its primitives are analytic.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Extent {
+    lower: Vec3A,
+    upper: Vec3A,
+    clower: Vec3A,
+    cupper: Vec3A,
+    other: usize,
 }
 
-fn leaf_cost(n: usize, triangles: bool) -> f32 {
+impl Extent {
+    const EMPTY: Extent = Extent {
+        lower: Vec3A::INFINITY,
+        upper: Vec3A::NEG_INFINITY,
+        clower: Vec3A::INFINITY,
+        cupper: Vec3A::NEG_INFINITY,
+        other: 0,
+    };
+
+    #[inline(always)]
+    fn grow(&mut self, p: &BuildPrim) {
+        let (l, u) = (p.lower(), p.upper());
+        let c = l + u;
+        self.lower = self.lower.min(l);
+        self.upper = self.upper.max(u);
+        self.clower = self.clower.min(c);
+        self.cupper = self.cupper.max(c);
+        self.other += !p.is_triangle() as usize;
+    }
+
+    fn union(&self, o: &Extent) -> Extent {
+        Extent {
+            lower: self.lower.min(o.lower),
+            upper: self.upper.max(o.upper),
+            clower: self.clower.min(o.clower),
+            cupper: self.cupper.max(o.cupper),
+            other: self.other + o.other,
+        }
+    }
+
+    /// The extent of `prims` (in parallel for large ranges).
+    pub fn of(prims: &[BuildPrim]) -> Extent {
+        let scan = |chunk: &[BuildPrim]| {
+            let mut e = Extent::EMPTY;
+            for p in chunk {
+                e.grow(p);
+            }
+            e
+        };
+        if prims.len() >= PARALLEL_BINNING_MIN {
+            prims
+                .par_chunks(PARALLEL_BINNING_MIN / 4)
+                .map(scan)
+                .reduce(|| Extent::EMPTY, |a, b| a.union(&b))
+        } else {
+            scan(prims)
+        }
+    }
+
+    /// The union of the range's boxes.
+    pub fn bounds(&self) -> Aabb {
+        Aabb::new(Vec3::from(self.lower), Vec3::from(self.upper))
+    }
+
+    /// Whether a range of `count` primitives with this extent is all triangles or all
+    /// analytic primitives.
+    fn is_pure(&self, count: usize) -> bool {
+        self.other == 0 || self.other == count
+    }
+}
+
+/// SAH cost of a leaf of `n` primitives, all triangles or all analytic.
+pub(super) fn leaf_cost(n: usize, triangles: bool) -> f32 {
     if triangles {
         n.div_ceil(TRI_BLOCK) as f32
     } else {
@@ -115,240 +187,358 @@ fn leaf_cost(n: usize, triangles: bool) -> f32 {
     }
 }
 
-#[derive(Clone, Copy)]
-struct Bin {
-    bounds: Aabb,
-    count: usize,
-    /// Non-triangle primitives in the bin (they cost one test each).
-    other: usize,
-}
-
-const EMPTY_BIN: Bin = Bin { bounds: Aabb::EMPTY, count: 0, other: 0 };
-
-type Bins = [[Bin; BINS]; 3];
-
-fn bin_index(c: f32, min: f32, scale: f32) -> usize {
-    (((c - min) * scale) as usize).min(BINS - 1)
-}
-
-fn bin_prims(items: &[BuildPrim], cmin: Vec3, scale: Vec3) -> Box<Bins> {
-    let mut bins = Box::new([[EMPTY_BIN; BINS]; 3]);
-    for p in items {
-        for axis in 0..3 {
-            let b = &mut bins[axis][bin_index(p.centroid[axis], cmin[axis], scale[axis])];
-            b.bounds = b.bounds.union(&p.bounds);
-            b.count += 1;
-            b.other += !p.is_triangle as usize;
-        }
-    }
-    bins
-}
-
-fn merge_bins(mut a: Box<Bins>, b: Box<Bins>) -> Box<Bins> {
-    for axis in 0..3 {
-        for i in 0..BINS {
-            let (x, y) = (&mut a[axis][i], &b[axis][i]);
-            x.bounds = x.bounds.union(&y.bounds);
-            x.count += y.count;
-            x.other += y.other;
-        }
-    }
-    a
-}
-
 /// Cost of `n` primitives of which `other` are not triangles.
 fn block_cost(n: usize, other: usize) -> f32 {
     (n - other).div_ceil(TRI_BLOCK) as f32 + other as f32
 }
 
-/// The bounds of `prims`, the bounds of their centroids, and how many are triangles.
-fn extent(prims: &[BuildPrim]) -> (Aabb, Aabb, usize) {
-    let mut bounds = Aabb::EMPTY;
-    let mut cbounds = Aabb::EMPTY;
-    let mut triangles = 0usize;
-    for p in prims {
-        bounds = bounds.union(&p.bounds);
-        cbounds.grow(p.centroid);
-        triangles += p.is_triangle as usize;
-    }
-    (bounds, cbounds, triangles)
+/// The bins of one range: per axis, the box and the counts of the primitives whose centroid
+/// falls in each bin.
+#[derive(Clone, Copy)]
+struct Bins {
+    lower: [[Vec3A; BINS]; 3],
+    upper: [[Vec3A; BINS]; 3],
+    count: [[u32; BINS]; 3],
+    other: [[u32; BINS]; 3],
 }
 
-fn build_node(prims: &mut [BuildPrim], offset: usize, depth: usize) -> BinaryNode {
-    let (bounds, cbounds, triangles) = extent(prims);
-    let count = prims.len();
-    let pure = triangles == count || triangles == 0;
-    if count == 1 {
-        return BinaryNode::Leaf {
-            bounds,
-            start: offset,
-            count,
-            triangles: triangles == count,
-            refined: None,
-        };
+impl Bins {
+    fn empty() -> Bins {
+        Bins {
+            lower: [[Vec3A::INFINITY; BINS]; 3],
+            upper: [[Vec3A::NEG_INFINITY; BINS]; 3],
+            count: [[0; BINS]; 3],
+            other: [[0; BINS]; 3],
+        }
     }
-    let mid = match (depth < SAH_MAX_DEPTH)
-        .then(|| sah_split(prims, &bounds, &cbounds, count - triangles, SplitPolicy::LeafIfCheaper))
-        .flatten()
-    {
-        Some(mid) => mid,
-        None if count <= MAX_LEAF && pure => return refined_leaf(prims, offset, bounds, &cbounds),
-        None if count <= MAX_LEAF => {
-            // the SAH wants a leaf, but leaves hold one kind: triangles first, then the rest
-            let mut i = 0;
-            for j in 0..count {
-                if prims[j].is_triangle {
-                    prims.swap(i, j);
-                    i += 1;
+
+    /// Empties the first `n` bins of each axis (the only ones a [`Binner`] of `n` bins uses).
+    fn reset(&mut self, n: usize) {
+        for axis in 0..3 {
+            self.lower[axis][..n].fill(Vec3A::INFINITY);
+            self.upper[axis][..n].fill(Vec3A::NEG_INFINITY);
+            self.count[axis][..n].fill(0);
+            self.other[axis][..n].fill(0);
+        }
+    }
+
+    fn merge(mut self, b: &Bins) -> Bins {
+        for axis in 0..3 {
+            for i in 0..BINS {
+                self.lower[axis][i] = self.lower[axis][i].min(b.lower[axis][i]);
+                self.upper[axis][i] = self.upper[axis][i].max(b.upper[axis][i]);
+                self.count[axis][i] += b.count[axis][i];
+                self.other[axis][i] += b.other[axis][i];
+            }
+        }
+        self
+    }
+}
+
+/// Maps doubled centroids to bins.
+#[derive(Clone, Copy)]
+struct Binner {
+    /// Bins per axis.
+    n: usize,
+    origin: Vec3A,
+    /// Bins per unit of doubled centroid, 0 on axes where the centroids do not spread.
+    scale: Vec3A,
+    /// The last bin's index, n − 1.
+    last: f32,
+}
+
+impl Binner {
+    fn new(e: &Extent, count: usize) -> Binner {
+        let n = bin_count(count);
+        let size = e.cupper - e.clower;
+        let scale = Vec3A::from_array(std::array::from_fn(|a| {
+            let s = n as f32 / size[a];
+            if is_positive(size[a]) && s.is_finite() {
+                s
+            } else {
+                0.0
+            }
+        }));
+        Binner { n, origin: e.clower, scale, last: (n - 1) as f32 }
+    }
+
+    /// The bin of `p` on each axis.
+    #[inline(always)]
+    fn bins(&self, p: &BuildPrim) -> [usize; 3] {
+        let f = ((p.centroid2() - self.origin) * self.scale)
+            .clamp(Vec3A::ZERO, Vec3A::splat(self.last));
+        // SAFETY: `f` is finite and in [0, n − 1] (centroids and scales are finite, the clamp
+        // bounds it), where truncation to an integer is defined; Rust's saturating `as` costs
+        // two compares per axis here, the binning's hottest loop.
+        f.to_array().map(|x| unsafe { x.to_int_unchecked::<u32>() } as usize)
+    }
+
+    /// The bin of `p` on `axis` (the same arithmetic as [`Binner::bins`]).
+    #[inline(always)]
+    fn bin_on(&self, axis: usize, p: &BuildPrim) -> usize {
+        let c = p.lower[axis] + p.upper[axis];
+        let f = ((c - self.origin[axis]) * self.scale[axis]).clamp(0.0, self.last);
+        // SAFETY: as in `bins`
+        unsafe { f.to_int_unchecked::<u32>() as usize }
+    }
+
+    /// The bins of `prims` in fresh bins.
+    fn bin(&self, prims: &[BuildPrim]) -> Bins {
+        let mut bins = [Bins::empty(), Bins::empty()];
+        self.bin_into(prims, &mut bins);
+        bins[0]
+    }
+
+    /// Adds `prims` to `bins[0]`, using `bins[1]` (also reset) as scratch: even and odd
+    /// primitives go to separate bins, merged at the end. Neighbouring primitives of a mesh
+    /// usually fall in the same bins, and one set of bins makes each update wait for the
+    /// previous one's store (the binning took 28 % of a large build so).
+    fn bin_into(&self, prims: &[BuildPrim], bins: &mut [Bins; 2]) {
+        if prims.iter().all(BuildPrim::is_triangle) {
+            self.bin_pairs::<false>(prims, bins);
+        } else {
+            self.bin_pairs::<true>(prims, bins);
+        }
+        let [a, b] = bins;
+        for axis in 0..3 {
+            for i in 0..self.n {
+                a.lower[axis][i] = a.lower[axis][i].min(b.lower[axis][i]);
+                a.upper[axis][i] = a.upper[axis][i].max(b.upper[axis][i]);
+                a.count[axis][i] += b.count[axis][i];
+                a.other[axis][i] += b.other[axis][i];
+            }
+        }
+    }
+
+    /// [`Binner::bin_into`] before the merge; `ANALYTIC`: whether to count analytic
+    /// primitives (a range of triangles has none to count).
+    #[inline(always)]
+    fn bin_pairs<const ANALYTIC: bool>(&self, prims: &[BuildPrim], bins: &mut [Bins; 2]) {
+        let add = |bins: &mut Bins, p: &BuildPrim| {
+            let b = self.bins(p);
+            let (l, u) = (p.lower(), p.upper());
+            for (axis, &i) in b.iter().enumerate() {
+                bins.lower[axis][i] = bins.lower[axis][i].min(l);
+                bins.upper[axis][i] = bins.upper[axis][i].max(u);
+                bins.count[axis][i] += 1;
+                if ANALYTIC {
+                    bins.other[axis][i] += !p.is_triangle() as u32;
                 }
             }
-            i
+        };
+        let [even, odd] = bins;
+        let mut pairs = prims.chunks_exact(2);
+        for pair in &mut pairs {
+            add(even, &pair[0]);
+            add(odd, &pair[1]);
         }
-        None => {
-            // the SAH prefers a leaf (or all centroids coincide) but it would be too big, or
-            // the tree is too deep: split at the median along the widest centroid axis
-            let axis = cbounds.max_axis();
-            let half = count / 2;
-            prims
-                .select_nth_unstable_by(half, |a, b| a.centroid[axis].total_cmp(&b.centroid[axis]));
-            half
+        for p in pairs.remainder() {
+            add(even, p);
         }
-    };
-    let (left, right) = prims.split_at_mut(mid);
-    let (l, r) = if count >= PARALLEL_MIN {
-        rayon::join(
-            || build_node(left, offset, depth + 1),
-            || build_node(right, offset + mid, depth + 1),
-        )
-    } else {
-        (build_node(left, offset, depth + 1), build_node(right, offset + mid, depth + 1))
-    };
-    BinaryNode::Inner { bounds, children: Box::new([l, r]) }
+    }
 }
 
-/// A leaf over `prims` (all of one kind, at most [`MAX_LEAF`]; `bounds` and `cbounds` from
-/// [`extent`]) with its refinement (see [`BinaryNode`]), reordering `prims` within their range
-/// as the refinement splits them.
-fn refined_leaf(
-    prims: &mut [BuildPrim],
-    offset: usize,
-    bounds: Aabb,
-    cbounds: &Aabb,
-) -> BinaryNode {
-    let count = prims.len();
-    let triangles = prims[0].is_triangle;
-    let other = if triangles { 0 } else { count };
-    // Only leaves that hold several shapes are refined: those are separate objects the SAH put
-    // together (cornell's walls, materials' spheres). The triangles of one mesh in a leaf are a
-    // compact patch; refining those too made sphere1m's BVH build 1.3–1.5× longer and its
-    // shadow rays 0.67–0.72 of Embree's speed instead of 0.99 (benches/embree, 2 threads;
-    // 2026-12-02, AMD EPYC, 2 cores).
-    //
-    // A refinement is kept where it lowers the expected number of tests (surface area ×
-    // packets or analytic primitives; the node visit is free). One that needs more triangle
-    // packets than the leaf also costs memory, so it must cut the tests to REFINE_GROWTH_GAIN
-    // of the leaf's: a wall and a light pass; overlapping halves do not.
-    let cost = |b: &Aabb, n: usize| b.surface_area() * leaf_cost(n, triangles);
-    let several_shapes = prims.iter().any(|p| p.shape != prims[0].shape);
-    let refined = (count > 1 && several_shapes)
-        .then(|| sah_split(prims, &bounds, cbounds, other, SplitPolicy::Always))
-        .flatten()
-        .and_then(|mid| {
-            let (left, right) = prims.split_at_mut(mid);
-            let ((lb, lc, _), (rb, rc, _)) = (extent(left), extent(right));
-            let split_cost = cost(&lb, mid) + cost(&rb, count - mid);
-            let grows = leaf_cost(mid, triangles) + leaf_cost(count - mid, triangles)
-                > leaf_cost(count, triangles);
-            let gain = if grows && triangles { REFINE_GROWTH_GAIN } else { 1.0 };
-            // the halves are refined in turn only where the split is kept
-            (split_cost < gain * cost(&bounds, count)).then(|| {
-                Box::new([
-                    refined_leaf(left, offset, lb, &lc),
-                    refined_leaf(right, offset + mid, rb, &rc),
-                ])
-            })
-        });
-    BinaryNode::Leaf { bounds, start: offset, count, triangles, refined }
+thread_local! {
+    /// Each thread's bins for the ranges it bins alone (reset, not re-made, for each range).
+    static SCRATCH_BINS: std::cell::RefCell<Box<[Bins; 2]>> =
+        std::cell::RefCell::new(Box::new([Bins::empty(), Bins::empty()]));
 }
 
-/// Binned SAH: partitions `items` and returns the size of the left part, or `None` when a leaf
-/// is cheaper under `policy` (or no bin boundary separates the centroids).
-fn sah_split(
-    items: &mut [BuildPrim],
-    bounds: &Aabb,
-    cbounds: &Aabb,
-    other: usize,
-    policy: SplitPolicy,
-) -> Option<usize> {
-    let count = items.len();
-    let extent = cbounds.extent();
-    let scale = Vec3::from_array(std::array::from_fn(|a| {
-        if is_positive(extent[a]) {
-            BINS as f32 / extent[a]
-        } else {
-            0.0
-        }
-    }));
-    let bins = if count >= PARALLEL_BINNING_MIN {
-        items
-            .par_chunks(PARALLEL_BINNING_MIN / 4)
-            .map(|c| bin_prims(c, cbounds.min, scale))
-            .reduce_with(merge_bins)
-            .expect("a non-empty node has a chunk")
-    } else {
-        bin_prims(items, cbounds.min, scale)
-    };
-    let mut best: Option<(f32, usize, usize)> = None; // (cost, axis, last bin on the left)
+fn surface_area(lower: Vec3A, upper: Vec3A) -> f32 {
+    let d = (upper - lower).max(Vec3A::ZERO);
+    2.0 * (d.x * d.y + d.y * d.z + d.z * d.x)
+}
+
+/// When [`sah_split`] may answer that a leaf is cheaper.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub(super) enum SplitPolicy {
+    /// The SAH's choice: `None` where a leaf costs less than the best split.
+    LeafIfCheaper,
+    /// The best split whatever it costs (`None` only where no bin boundary separates the
+    /// centroids): the refinement of a leaf.
+    Always,
+}
+
+/// Two halves of a range: `prims[..mid]` and `prims[mid..]`, with their extents.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Split {
+    pub mid: usize,
+    pub left: Extent,
+    pub right: Extent,
+}
+
+/// The cheapest split of the binned primitives: (cost, axis, last bin on the left).
+fn best_split(bins: &Bins, binner: &Binner, count: usize) -> Option<(f32, usize, usize)> {
+    let n_bins = binner.n;
+    let mut best: Option<(f32, usize, usize)> = None;
     for axis in 0..3 {
-        if scale[axis] == 0.0 {
+        if binner.scale[axis] == 0.0 {
             continue;
         }
-        let bins = &bins[axis];
         // sweep from the right for suffix areas and costs
         let mut right_cost = [0.0f32; BINS];
-        let mut acc = Aabb::EMPTY;
-        let (mut n, mut o) = (0, 0);
-        for i in (1..BINS).rev() {
-            acc = acc.union(&bins[i].bounds);
-            n += bins[i].count;
-            o += bins[i].other;
-            right_cost[i] = if n > 0 { acc.surface_area() * block_cost(n, o) } else { f32::NAN };
+        let (mut lo, mut hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+        let (mut n, mut o) = (0usize, 0usize);
+        for i in (1..n_bins).rev() {
+            lo = lo.min(bins.lower[axis][i]);
+            hi = hi.max(bins.upper[axis][i]);
+            n += bins.count[axis][i] as usize;
+            o += bins.other[axis][i] as usize;
+            right_cost[i] = if n > 0 { surface_area(lo, hi) * block_cost(n, o) } else { f32::NAN };
         }
-        let mut acc = Aabb::EMPTY;
-        let (mut n, mut o) = (0, 0);
-        for i in 0..BINS - 1 {
-            acc = acc.union(&bins[i].bounds);
-            n += bins[i].count;
-            o += bins[i].other;
+        let (mut lo, mut hi) = (Vec3A::INFINITY, Vec3A::NEG_INFINITY);
+        let (mut n, mut o) = (0usize, 0usize);
+        for i in 0..n_bins - 1 {
+            lo = lo.min(bins.lower[axis][i]);
+            hi = hi.max(bins.upper[axis][i]);
+            n += bins.count[axis][i] as usize;
+            o += bins.other[axis][i] as usize;
             if n == 0 || n == count {
                 continue;
             }
-            let cost = acc.surface_area() * block_cost(n, o) + right_cost[i + 1];
+            let cost = surface_area(lo, hi) * block_cost(n, o) + right_cost[i + 1];
             if best.is_none_or(|(c, _, _)| cost < c) {
                 best = Some((cost, axis, i));
             }
         }
     }
+    best
+}
+
+/// Binned SAH: partitions `prims` (whose extent is `e`) and returns the halves, or `None`
+/// when a leaf is cheaper under `policy` (or no bin boundary separates the centroids).
+pub(super) fn sah_split(prims: &mut [BuildPrim], e: &Extent, policy: SplitPolicy) -> Option<Split> {
+    let count = prims.len();
+    let binner = Binner::new(e, count);
+    let best = if count >= PARALLEL_BINNING_MIN {
+        let bins = prims
+            .par_chunks(PARALLEL_BINNING_MIN / 4)
+            .map(|c| binner.bin(c))
+            .reduce_with(|a, b| a.merge(&b))
+            .expect("a non-empty range has a chunk");
+        best_split(&bins, &binner, count)
+    } else {
+        SCRATCH_BINS.with(|bins| {
+            let mut bins = bins.borrow_mut();
+            bins[0].reset(binner.n);
+            bins[1].reset(binner.n);
+            binner.bin_into(prims, &mut bins);
+            best_split(&bins[0], &binner, count)
+        })
+    };
     let (cost, axis, split) = best?;
-    let area = bounds.surface_area();
+    let area = surface_area(e.lower, e.upper);
     let split_cost = if area > 0.0 { TRAVERSAL_COST + cost / area } else { TRAVERSAL_COST };
-    let pure = other == 0 || other == count;
     if policy == SplitPolicy::LeafIfCheaper
         && count <= MAX_LEAF
-        && pure
-        && split_cost >= leaf_cost(count, other == 0)
+        && e.is_pure(count)
+        && split_cost >= leaf_cost(count, e.other == 0)
     {
         return None;
     }
-    let (min, s) = (cbounds.min[axis], scale[axis]);
-    let in_left = |p: &BuildPrim| bin_index(p.centroid[axis], min, s) <= split;
-    // in-place partition
-    let mut i = 0;
-    for j in 0..count {
-        if in_left(&items[j]) {
-            items.swap(i, j);
+    let s = partition(prims, |p| binner.bin_on(axis, p) <= split);
+    (s.mid > 0 && s.mid < count).then_some(s)
+}
+
+/// Moves the primitives for which `in_left` holds to the front (swapping from both ends) and
+/// returns the two parts.
+fn partition(prims: &mut [BuildPrim], in_left: impl Fn(&BuildPrim) -> bool) -> Split {
+    let (mut left, mut right) = (Extent::EMPTY, Extent::EMPTY);
+    let (mut i, mut j) = (0usize, prims.len());
+    loop {
+        while i < j && in_left(&prims[i]) {
+            left.grow(&prims[i]);
             i += 1;
         }
+        while i < j && !in_left(&prims[j - 1]) {
+            right.grow(&prims[j - 1]);
+            j -= 1;
+        }
+        if i >= j {
+            break;
+        }
+        // the extents grow from the copies in registers: reading back the slots just written
+        // stalls on store forwarding (a third of the partition's time)
+        let (a, b) = (prims[i], prims[j - 1]);
+        prims[i] = b;
+        prims[j - 1] = a;
+        left.grow(&b);
+        right.grow(&a);
+        i += 1;
+        j -= 1;
     }
-    (i > 0 && i < count).then_some(i)
+    Split { mid: i, left, right }
 }
+
+/// What a range becomes.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Decision {
+    /// A leaf: at most [`MAX_LEAF`] primitives, all of one kind.
+    Leaf,
+    /// Two halves.
+    Inner(Split),
+}
+
+/// The builder's decision for `prims` (extent `e`, at binary depth `depth`), partitioning
+/// them where they split: the SAH's split; below [`SAH_MAX_DEPTH`], or where the SAH prefers
+/// a leaf that would be too large or mixed, the object median or triangles-first.
+pub(super) fn decide(prims: &mut [BuildPrim], e: &Extent, depth: usize) -> Decision {
+    let count = prims.len();
+    if count == 1 {
+        return Decision::Leaf;
+    }
+    if depth < SAH_MAX_DEPTH {
+        if let Some(s) = sah_split(prims, e, SplitPolicy::LeafIfCheaper) {
+            return Decision::Inner(s);
+        }
+    }
+    let pure = e.is_pure(count);
+    if count <= MAX_LEAF && pure {
+        return Decision::Leaf;
+    }
+    if count <= MAX_LEAF {
+        // the SAH wants a leaf, but leaves hold one kind: triangles first, then the rest
+        return Decision::Inner(partition(prims, BuildPrim::is_triangle));
+    }
+    // the SAH prefers a leaf (or all centroids coincide) but it would be too big, or the tree
+    // is too deep: split at the median along the widest centroid axis
+    let axis = Aabb::new(Vec3::from(e.clower), Vec3::from(e.cupper)).max_axis();
+    let mid = count / 2;
+    prims.select_nth_unstable_by(mid, |a, b| a.centroid2()[axis].total_cmp(&b.centroid2()[axis]));
+    let (l, r) = prims.split_at(mid);
+    let (left, right) = if count >= PARALLEL_BINNING_MIN {
+        rayon::join(|| Extent::of(l), || Extent::of(r))
+    } else {
+        (Extent::of(l), Extent::of(r))
+    };
+    Decision::Inner(Split { mid, left, right })
+}
+
+/// A refinement of a leaf of several shapes (see `wide_build.rs`): the SAH's best split of it,
+/// kept where it lowers the expected number of tests (surface area × packets or analytic
+/// primitives; the node visit is free where a wide node has a slot to spare). A refinement
+/// that needs more triangle packets than the leaf also costs memory, so it must cut the tests
+/// to [`REFINE_GROWTH_GAIN`] of the leaf's: a wall and a light pass; overlapping halves do
+/// not.
+///
+/// Only leaves that hold several shapes are refined: those are separate objects the SAH put
+/// together (cornell's walls, materials' spheres). The triangles of one mesh in a leaf are a
+/// compact patch; refining those too made sphere1m's BVH build 1.3–1.5× longer and its shadow
+/// rays 0.67–0.72 of Embree's speed instead of 0.99 (benches/embree, 2 threads; 2026-12-02,
+/// AMD EPYC, 2 cores).
+pub(super) fn refine(prims: &mut [BuildPrim], e: &Extent) -> Option<Split> {
+    let count = prims.len();
+    if count < 2 || prims.iter().all(|p| p.shape == prims[0].shape) {
+        return None;
+    }
+    let triangles = e.other == 0;
+    let cost = |x: &Extent, n: usize| surface_area(x.lower, x.upper) * leaf_cost(n, triangles);
+    let s = sah_split(prims, e, SplitPolicy::Always)?;
+    let grows = leaf_cost(s.mid, triangles) + leaf_cost(count - s.mid, triangles)
+        > leaf_cost(count, triangles);
+    let gain = if grows && triangles { REFINE_GROWTH_GAIN } else { 1.0 };
+    (cost(&s.left, s.mid) + cost(&s.right, count - s.mid) < gain * cost(e, count)).then_some(s)
+}
+
+/// See [`refine`].
+const REFINE_GROWTH_GAIN: f32 = 0.75;

@@ -7,7 +7,7 @@
 //! registers, so that a leaf of two packets, the common case in small scenes, is one test.
 
 use super::kernel::{Kernel, LaneHit, TravRay};
-use super::wide::{Node8, Tri4, WIDTH};
+use super::layout::{Node8, Tri4, WIDTH};
 use crate::geometry::triangle::{edge_functions_f64, watertight_core};
 
 /// Portable kernels (the compiler may still vectorise the lane loops).

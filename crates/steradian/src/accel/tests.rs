@@ -2,7 +2,7 @@
 
 use glam::{Vec2, Vec3};
 
-use super::wide::{leaf_range, ANALYTIC, EMPTY_CHILD, LEAF, WIDTH};
+use super::layout::{leaf_range, ANALYTIC, EMPTY_CHILD, LEAF, WIDTH};
 use super::{Accel, Isa};
 use crate::geometry::Aabb;
 use crate::geometry::{Ray, Transform};
@@ -81,9 +81,9 @@ fn leaf_kinds(accel: &Accel) -> (usize, usize) {
         .nodes
         .iter()
         .flat_map(|n| n.child)
-        .filter(|&c| c & super::wide::LEAF != 0 && c & super::wide::ANALYTIC == 0);
+        .filter(|&c| c & super::layout::LEAF != 0 && c & super::layout::ANALYTIC == 0);
     leaves.fold((0, 0), |(one, more), c| {
-        if super::wide::leaf_range(c).len() == 1 {
+        if super::layout::leaf_range(c).len() == 1 {
             (one + 1, more)
         } else {
             (one, more + 1)
@@ -414,4 +414,76 @@ fn instances_match_their_flattened_copies() {
     assert!(hits > 2000, "{hits} hits");
     assert!(mismatches * 1000 < hits, "{mismatches} mismatches in {hits} hits");
     assert_eq!((accel.stats().instances, accel.stats().triangles), (40, 0));
+}
+
+/// A grid of `n × n` quads (2 n² triangles) on a wavy surface: a mesh large enough for the
+/// builder's parallel paths (ranges above 4096 primitives split over threads, above 65536 bin
+/// over threads).
+fn wavy_grid(n: u32) -> Shape {
+    let mut pos = Vec::new();
+    for j in 0..=n {
+        for i in 0..=n {
+            let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
+            pos.push(Vec3::new(x, y, 0.1 * (9.0 * x).sin() * (7.0 * y).cos()));
+        }
+    }
+    let mut idx = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let v = j * (n + 1) + i;
+            idx.push([v, v + 1, v + n + 2]);
+            idx.push([v, v + n + 2, v + n + 1]);
+        }
+    }
+    Shape::Mesh(Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, true).unwrap())
+}
+
+/// The hierarchy is the same on any number of threads, bit for bit: every decision depends on
+/// the primitives only, and the parallel chunks are laid out in a fixed order.
+#[test]
+fn builds_are_the_same_on_any_thread_count() {
+    let mut shapes = scene(9);
+    shapes.push(wavy_grid(200)); // 80,000 triangles
+    let build = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| Accel::build_with_isa(&shapes, Isa::Scalar))
+    };
+    let one = build(1);
+    for threads in [2, 3] {
+        let other = build(threads);
+        assert_eq!(one.root, other.root);
+        assert_eq!(one.nodes.len(), other.nodes.len());
+        for (a, b) in one.nodes.iter().zip(&other.nodes) {
+            assert_eq!(a.child, b.child);
+            assert_eq!(
+                a.bounds.map(|p| p.map(f32::to_bits)),
+                b.bounds.map(|p| p.map(f32::to_bits))
+            );
+        }
+        assert_eq!(one.tris.len(), other.tris.len());
+        for (a, b) in one.tris.iter().zip(&other.tris) {
+            assert_eq!(
+                a.v.map(|k| k.map(|x| x.map(f32::to_bits))),
+                b.v.map(|k| k.map(|x| x.map(f32::to_bits)))
+            );
+        }
+        for (a, b) in one.tri_ids.iter().zip(&other.tri_ids) {
+            assert_eq!((a.shape, a.prim), (b.shape, b.prim));
+        }
+        let refs = |acc: &Accel| acc.others.iter().map(|r| (r.shape, r.prim)).collect::<Vec<_>>();
+        assert_eq!(refs(&one), refs(&other));
+    }
+    // and the large mesh traces as brute force does
+    let mut r = Pcg32::new(11, 3);
+    for _ in 0..300 {
+        let o = Vec3::new(r.next_f32(), r.next_f32(), 1.0);
+        let d = (Vec3::new(r.next_f32(), r.next_f32(), -1.0) - o).normalize();
+        let ray = Ray::infinite(o, d);
+        let want = brute_intersect(&shapes, &ray).map(|(_, s, p)| (s, p));
+        let got = one.intersect(&shapes, &ray).map(|h| (h.shape, h.prim));
+        assert_eq!(got, want, "{ray:?}");
+    }
 }

@@ -24,9 +24,8 @@ use std::mem::MaybeUninit;
 use glam::Vec2;
 
 use super::kernel::{Kernel, TravRay};
-use super::wide::{
-    leaf_range, Accel, Isa, Node8, Tri4, ANALYTIC, EMPTY_CHILD, INSTANCE_REF, LEAF, WIDTH,
-};
+use super::layout::{leaf_range, Node8, Tri4, ANALYTIC, EMPTY_CHILD, INSTANCE_REF, LEAF, WIDTH};
+use super::wide::{Accel, Isa};
 use crate::geometry::{PreliminaryHit, Ray, NO_INSTANCE};
 use crate::shape::Shape;
 

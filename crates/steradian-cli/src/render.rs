@@ -388,13 +388,23 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         }
         _ => {}
     }
+    let build_time = scene.scene.build_time().as_secs_f64();
     println!(
-        "time: load {:.2} s (of which parse {:.2} s, BVH build {:.2} s), render {:.2} s, write {:.2} s",
+        "time: load {:.2} s (parse {:.2} s, files {:.2} s, BVH build {:.2} s), render {:.2} s, write {:.2} s",
         load_time.as_secs_f64(),
         parse_time.as_secs_f64(),
-        scene.scene.build_time().as_secs_f64(),
+        (load_time - parse_time).as_secs_f64() - build_time,
+        build_time,
         secs,
         write_time.as_secs_f64()
+    );
+    let stats = scene.scene.accel_stats();
+    let prims = stats.triangles + stats.analytic_prims;
+    println!(
+        "bvh: {prims} primitives, built at {:.2} M/s, {:.1} MB ({:.1} bytes per primitive)",
+        prims as f64 / build_time.max(1e-9) / 1e6,
+        stats.bytes as f64 / 1e6,
+        stats.bytes as f64 / prims.max(1) as f64
     );
     println!("wrote {} and {}", output.display(), png.display());
     if let (Some(w), false) = (&writer, out.interrupted) {

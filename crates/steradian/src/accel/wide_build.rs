@@ -73,7 +73,8 @@ pub(super) fn build(mut prims: Vec<BuildPrim>) -> Layout {
         root: EMPTY_CHILD,
         bounds: extent.bounds(),
         nodes: with_huge_pages(nodes),
-        tri_ids: with_huge_pages(packets),
+        // read once per hit, not per visit: ordinary pages (huge ones cost their first touch)
+        tri_ids: Vec::with_capacity(packets),
         others: Vec::with_capacity(others),
     };
     chunk.visit(&mut |c| {

@@ -3,8 +3,8 @@
 //! photometric file) and `ciesky` (CIE standard skies).
 
 use steradian::emitter::{
-    cie_sky, AreaLight, ConstantEnvironment, DirectionalLight, Emitter, EnvironmentMap, Luminaire,
-    PointLight, Projector, SkyLevel, SkyModel, SpotLight,
+    cie_sky, from_photometric, AreaLight, ConstantEnvironment, DirectionalLight, Emitter,
+    EnvironmentMap, Luminaire, PointLight, Projector, SkyLevel, SkyModel, SpotLight,
 };
 use steradian::geometry::Transform;
 use steradian::photometry::{parse_eulumdat, parse_ies, IntensityTable};
@@ -40,8 +40,12 @@ pub(crate) fn build_area(
             ),
         ));
     }
-    let radiance =
-        super::textures::texture_param(b, node, "radiance", Some(AreaLight::DEFAULT_RADIANCE))?;
+    let radiance = match photometric_strength(node, "radiance", &[("luminance", "cd/m²", 1.0)])? {
+        Some(v) => steradian::texture::Texture::Constant(v),
+        None => {
+            super::textures::texture_param(b, node, "radiance", Some(AreaLight::DEFAULT_RADIANCE))?
+        }
+    };
     if let steradian::texture::Texture::Constant(v) = radiance {
         check_non_negative(node, "radiance", v)?;
     }
@@ -63,6 +67,42 @@ pub(crate) fn build_area(
         return Ok(None);
     }
     Ok(Some(Emitter::Area(AreaLight::new(shape, radiance))))
+}
+
+/// A light's strength given in one of steradian's photometric parameters `(name, unit name,
+/// factor)` with an optional `color` (default white): the radiometric value of value × factor
+/// (`steradian::emitter::from_photometric`, the one place the units are converted). `None`
+/// where none is given, and then `color` is not read (so it is an unused-parameter error).
+/// Giving one together with Mitsuba's radiometric parameter `radiometric`, or two of them, is
+/// an error.
+fn photometric_strength(
+    node: &PluginNode,
+    radiometric: &str,
+    photometric: &[(&str, &str, f32)],
+) -> Result<Option<Spectrum>, LoadError> {
+    let p = &node.props;
+    let given: Vec<&(&str, &str, f32)> =
+        photometric.iter().filter(|(name, _, _)| p.contains(name)).collect();
+    let &[&(name, unit, factor)] = given.as_slice() else {
+        if given.len() > 1 {
+            return Err(at(node)(format!(
+                "give only one of {}",
+                given.iter().map(|(n, _, _)| format!("'{n}'")).collect::<Vec<_>>().join(", ")
+            )));
+        }
+        return Ok(None);
+    };
+    let prop_err = |msg: String| {
+        LoadError::at(p.position(name).unwrap_or(&node.pos), format!("{}: {msg}", node.desc()))
+    };
+    if p.contains(radiometric) {
+        return Err(prop_err(format!(
+            "give either '{radiometric}' (radiometric) or '{name}' ({unit}), not both"
+        )));
+    }
+    let value = p.get_float(name)?.expect("present");
+    let color = p.get_spectrum("color")?.unwrap_or(Spectrum::ONE);
+    from_photometric(value * factor, color).map(Some).map_err(|e| prop_err(format!("{name} {e}")))
 }
 
 /// A position given either as `position` or as the translation of `to_world`, not both.
@@ -210,7 +250,15 @@ pub(crate) fn build_standalone(
 
 fn point(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let default = Spectrum::splat(PointLight::DEFAULT_INTENSITY);
-    let intensity = node.props.get_spectrum("intensity")?.unwrap_or(default);
+    let photometric = [
+        ("luminous_intensity", "cd", 1.0),
+        // isotropic: I = Φ/4π
+        ("luminous_flux", "lm", 1.0 / (4.0 * std::f32::consts::PI)),
+    ];
+    let intensity = match photometric_strength(node, "intensity", &photometric)? {
+        Some(v) => v,
+        None => node.props.get_spectrum("intensity")?.unwrap_or(default),
+    };
     check_non_negative(node, "intensity", intensity)?;
     let to_world = position_or_to_world(node)?;
     Ok(Emitter::Point(PointLight::new(to_world.point(Vec3::ZERO), intensity)))
@@ -219,7 +267,12 @@ fn point(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
 fn spot(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
     let intensity =
-        p.get_spectrum("intensity")?.unwrap_or(Spectrum::splat(SpotLight::DEFAULT_INTENSITY));
+        match photometric_strength(node, "intensity", &[("luminous_intensity", "cd", 1.0)])? {
+            Some(v) => v,
+            None => p
+                .get_spectrum("intensity")?
+                .unwrap_or(Spectrum::splat(SpotLight::DEFAULT_INTENSITY)),
+        };
     check_non_negative(node, "intensity", intensity)?;
     let cutoff = p.get_float("cutoff_angle")?.unwrap_or(SpotLight::DEFAULT_CUTOFF_ANGLE);
     let beam = p.get_float("beam_width")?.unwrap_or(cutoff * SpotLight::DEFAULT_BEAM_WIDTH_RATIO);
@@ -253,9 +306,13 @@ fn spot(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
 
 fn directional(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
-    let irradiance = p
-        .get_spectrum("irradiance")?
-        .unwrap_or(Spectrum::splat(DirectionalLight::DEFAULT_IRRADIANCE));
+    let irradiance = match photometric_strength(node, "irradiance", &[("illuminance", "lx", 1.0)])?
+    {
+        Some(v) => v,
+        None => p
+            .get_spectrum("irradiance")?
+            .unwrap_or(Spectrum::splat(DirectionalLight::DEFAULT_IRRADIANCE)),
+    };
     check_non_negative(node, "irradiance", irradiance)?;
     let direction = match (p.get_vector("direction")?, p.get_transform("to_world")?) {
         (Some(_), Some(_)) => {
@@ -273,7 +330,10 @@ fn directional(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadEr
 
 fn constant(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let default = Spectrum::splat(ConstantEnvironment::DEFAULT_RADIANCE);
-    let radiance = node.props.get_spectrum("radiance")?.unwrap_or(default);
+    let radiance = match photometric_strength(node, "radiance", &[("luminance", "cd/m²", 1.0)])? {
+        Some(v) => v,
+        None => node.props.get_spectrum("radiance")?.unwrap_or(default),
+    };
     check_non_negative(node, "radiance", radiance)?;
     Ok(Emitter::Constant(ConstantEnvironment::new(radiance)))
 }

@@ -3,6 +3,8 @@
 //! | parameter  | type             | default | unit       |
 //! |------------|------------------|---------|------------|
 //! | `radiance` | spectrum/texture | 1       | W/(m²·sr)  |
+//! | `luminance` | float | — | cd/m², instead of `radiance` (steradian's own; with `color`, `photometric.rs`) |
+//! | `color` | spectrum | 1 (white) | the colour of a photometric light |
 //!
 //! The surface emits a constant radiance L from its **front** side only (the side its normal
 //! points to), as in Mitsuba 3; its flux is Φ = π·L·A. Directions are sampled with the shape's

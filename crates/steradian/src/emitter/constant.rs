@@ -3,6 +3,8 @@
 //! | parameter  | type     | default | unit      |
 //! |------------|----------|---------|-----------|
 //! | `radiance` | spectrum | 1       | W/(m²·sr) |
+//! | `luminance` | float | — | cd/m², instead of `radiance` (steradian's own; with `color`, `photometric.rs`) |
+//! | `color` | spectrum | 1 (white) | the colour of a photometric light |
 //!
 //! Every ray that escapes the scene sees radiance L; an unoccluded upward-facing surface
 //! receives H = π·L. Directions are sampled uniformly on the sphere, as in Mitsuba 3.

@@ -4,6 +4,8 @@
 //! |--------------|-----------|----------|------|
 //! | `irradiance` | spectrum  | 1        | W/m² on a surface perpendicular to the beam |
 //! | `direction`  | vector    | —        | the direction the light travels; or `to_world` mapping +z to it |
+//! | `illuminance` | float | — | lx on a surface perpendicular to the beam, instead of `irradiance` (steradian's own; with `color`, `photometric.rs`) |
+//! | `color` | spectrum | 1 (white) | the colour of a photometric light |
 //!
 //! A surface whose normal makes angle θ with the direction towards the light receives
 //! H·cos θ.

@@ -14,10 +14,11 @@
 //! that frame. A Mitsuba scene is often y-up: `<rotate x="1" angle="-90"/>` turns the nadir
 //! to −y.
 //!
-//! **Units.** Radiant intensity (W/sr) = I (cd) × `scale` × `color` / (683 lm/W × Y(`color`)),
-//! Y the luminance of the linear Rec. 709 primaries (0.2126, 0.7152, 0.0722): luminous
-//! intensity is the file's whatever the colour, and a white luminaire (equal RGB, the
-//! equal-energy white of steradian's RGB) emits I/683 W/sr in each channel. Illuminance meters
+//! **Units** (`photometric.rs`, as for every photometric parameter): radiant intensity (W/sr)
+//! = I (cd) × `scale` × `color` / (683 lm/W × Y(`color`)), Y the luminance of the linear
+//! Rec. 709 primaries (0.2126, 0.7152, 0.0722): luminous intensity is the file's whatever the
+//! colour, and a white luminaire (equal RGB, the equal-energy white of steradian's RGB) emits
+//! I/683 W/sr in each channel. Illuminance meters
 //! (`steradian measure`, Y × 683) read lux back.
 //!
 //! Its flux (for choosing among lights by power, and for `ptracer`'s emission sampling) is the
@@ -29,11 +30,11 @@ use std::sync::Arc;
 
 use glam::{Mat3, Vec2, Vec3};
 
+use super::photometric::from_photometric;
 use super::{towards, EmitterSample, Support};
 use crate::geometry::Transform;
 use crate::param::ParamError;
 use crate::photometry::IntensityTable;
-use crate::spectrum::luminance;
 use crate::Spectrum;
 
 /// Luminous efficacy of the radiometric unit: 683 lm/W (the SI definition of the candela).
@@ -63,19 +64,11 @@ impl Luminaire {
         scale: f32,
         color: Spectrum,
     ) -> Result<Luminaire, ParamError> {
-        if !(scale.is_finite() && scale >= 0.0) {
-            return Err(ParamError::new(
-                "scale",
-                format!("scale must be finite and non-negative, got {scale}"),
-            ));
-        }
-        let y = luminance(color);
-        if !(color.is_finite() && color.min_element() >= 0.0 && y > 0.0) {
-            return Err(ParamError::new(
-                "color",
-                format!("color must be non-negative with a positive luminance, got {color}"),
-            ));
-        }
+        // W/sr per cd (see `photometric.rs`)
+        let per_candela = from_photometric(scale, color).map_err(|e| {
+            let name = if scale.is_finite() && scale >= 0.0 { "color" } else { "scale" };
+            ParamError::new(name, format!("{name} {e}"))
+        })?;
         let rotation = to_world.linear();
         if !(rotation.transpose() * rotation).abs_diff_eq(Mat3::IDENTITY, 1e-4) {
             return Err(ParamError::new(
@@ -89,7 +82,7 @@ impl Luminaire {
             to_local: rotation.transpose(),
             to_world: rotation,
             table: Arc::new(table),
-            per_candela: color * (scale / (LUMENS_PER_WATT * y)),
+            per_candela,
         })
     }
 
@@ -124,6 +117,7 @@ impl Luminaire {
 mod tests {
     use super::*;
     use crate::photometry::parse_ies;
+    use crate::spectrum::luminance;
 
     fn downlight(to_world: &Transform, color: Spectrum) -> Luminaire {
         let text = include_str!("../photometry/testdata/cosine_3000lm_point_0-180.ies");

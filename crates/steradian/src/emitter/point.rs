@@ -3,6 +3,9 @@
 //! | parameter   | type     | default | unit |
 //! |-------------|----------|---------|------|
 //! | `intensity` | spectrum | 1       | W/sr (radiant intensity, not power) |
+//! | `luminous_intensity` | float | — | cd, instead of `intensity` (steradian's own; with `color`, `photometric.rs`) |
+//! | `luminous_flux` | float | — | lm, instead of `intensity`: I = Φ/4π (steradian's own) |
+//! | `color` | spectrum | 1 (white) | the colour of a photometric light; its luminance does not change the candela or lumen |
 //! | `position`  | point    | (0,0,0) | m; or the translation of `to_world` |
 //!
 //! Irradiance at distance r on a surface whose normal makes angle θ with the direction to the

@@ -7,6 +7,8 @@
 //! | `beam_width`   | float    | 3/4 · cutoff_angle  | degrees: full intensity within it |
 //! | `to_world`     | transform| identity            | the light sits at the origin and shines along +z |
 //! | `texture`      | texture  | none                | a factor projected along the beam (e.g. a `bitmap` slide) |
+//! | `luminous_intensity` | float | — | cd on the axis, instead of `intensity` (steradian's own; with `color`, `photometric.rs`) |
+//! | `color` | spectrum | 1 (white) | the colour of a photometric light |
 //!
 //! Intensity at angle θ from the axis: I·f(θ)·τ(uv) with Mitsuba 3's fall-off f = 1 for
 //! θ ≤ beam_width, (cutoff − θ)/(cutoff − beam_width) up to the cutoff, 0 beyond. With a

@@ -136,7 +136,7 @@ pub(super) const EMITTERS: &Plugins<BuildEmitter> = &[
 ];
 
 /// steradian's `ciesky` (parameters and defaults: `steradian::emitter::cie_sky`).
-fn build_ciesky(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+fn build_ciesky(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
     let err = |name: &str, msg: String| {
         LoadError::at(p.position(name).unwrap_or(&node.pos), format!("{}: {msg}", node.desc()))
@@ -176,6 +176,7 @@ fn build_ciesky(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadE
             )),
         };
     let env = cie_sky(model, level, &to_world).map_err(at_param(node))?;
+    b.sky.set(Some((model, level)));
     Ok(Emitter::EnvMap(env))
 }
 

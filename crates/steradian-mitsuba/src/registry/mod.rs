@@ -52,6 +52,10 @@ pub(crate) struct Builder {
     /// Set when a `mesh_attribute` texture was built: the BSDF being built belongs to its
     /// shape and is not shared through the cache.
     pub(crate) read_mesh_attribute: Cell<bool>,
+    /// The scene's `ciesky`, once built: the daylight factor's outdoor reference.
+    pub(crate) sky: Cell<Option<(steradian::emitter::SkyModel, steradian::emitter::SkyLevel)>>,
+    /// Work planes that report the daylight factor: where each is declared, and what it is.
+    pub(crate) daylight_planes: RefCell<Vec<(crate::SourcePos, String)>>,
 }
 
 /// What a `mesh_attribute` texture can read where it is built.
@@ -271,6 +275,8 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
         warnings: RefCell::new(tree.warnings.clone()),
         mesh_attributes: RefCell::new(AttributeSource::None),
         read_mesh_attribute: Cell::new(false),
+        sky: Cell::new(None),
+        daylight_planes: RefCell::new(Vec::new()),
     };
     let mut integrator_pos = None;
     let mut integrator = None;
@@ -350,6 +356,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
             ));
         }
     }
+    sensors::resolve_daylight_factors(&mut b)?;
     b.desc.light_selection = integrator.light_selection();
     let scene = Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))?;
     let warnings = b.warnings.into_inner().iter().map(ToString::to_string).collect();

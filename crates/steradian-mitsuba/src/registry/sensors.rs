@@ -3,6 +3,7 @@
 //! filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`).
 
+use steradian::emitter::horizontal_illuminance;
 use steradian::film::{
     BoxFilter, CatmullRomFilter, ComponentFormat, Film, GaussianFilter, LanczosFilter,
     MitchellFilter, ReconstructionFilter, TentFilter,
@@ -235,7 +236,7 @@ fn workplane_cells(node: &PluginNode) -> Result<(u32, u32), LoadError> {
 
 /// steradian's `workplane` (parameters and defaults: `steradian::sensor::Workplane`).
 fn workplane(
-    _: &Builder,
+    b: &Builder,
     node: &PluginNode,
     film: &Film,
     shape: Option<u32>,
@@ -260,15 +261,60 @@ fn workplane(
         Workplane::DEFAULT_MODE,
         &[("point", WorkplaneMode::Point), ("cell", WorkplaneMode::Cell)],
     )?;
+    // the daylight factor's outdoor illuminance comes from the scene's sky, known once the
+    // whole scene is built: `resolve_daylight_factors` fills it in (NaN until then)
+    let unresolved = WorkplaneUnit::DaylightFactor { outdoor_lux: f64::NAN };
     let unit = choice(
         node,
         "quantity",
         Workplane::DEFAULT_UNIT,
-        &[("illuminance", WorkplaneUnit::Illuminance), ("irradiance", WorkplaneUnit::Irradiance)],
+        &[
+            ("illuminance", WorkplaneUnit::Illuminance),
+            ("irradiance", WorkplaneUnit::Irradiance),
+            ("daylight_factor", unresolved),
+        ],
     )?;
+    if matches!(unit, WorkplaneUnit::DaylightFactor { .. }) {
+        b.daylight_planes.borrow_mut().push((node.pos.clone(), node.desc()));
+    }
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let w = Workplane::new(to_world, nx, ny, mode, unit).map_err(at_param(node))?;
     Ok(SensorKind::Workplane(w))
+}
+
+/// Gives every work plane that reports the daylight factor the outdoor illuminance of the
+/// scene's `ciesky` (E_out, `steradian::emitter::horizontal_illuminance`); an error, at the
+/// first such plane, when the scene has no `ciesky` or it is black.
+pub(crate) fn resolve_daylight_factors(b: &mut Builder) -> Result<(), LoadError> {
+    let planes = b.daylight_planes.borrow();
+    let Some((pos, desc)) = planes.first() else { return Ok(()) };
+    let outdoor_lux = match b.sky.get() {
+        Some((model, level)) => horizontal_illuminance(model, level),
+        None => {
+            return Err(LoadError::at(
+                pos,
+                format!(
+                    "{desc}: the daylight factor needs the scene's sky: add a <emitter \
+                     type=\"ciesky\"> (E_out is its unobstructed horizontal illuminance)"
+                ),
+            ))
+        }
+    };
+    if !(outdoor_lux > 0.0 && outdoor_lux.is_finite()) {
+        return Err(LoadError::at(
+            pos,
+            format!("{desc}: the daylight factor needs a sky brighter than 0 lx"),
+        ));
+    }
+    drop(planes);
+    for sensor in &mut b.desc.sensors {
+        if let SensorKind::Workplane(w) = &mut sensor.kind {
+            if let WorkplaneUnit::DaylightFactor { .. } = w.unit {
+                w.unit = WorkplaneUnit::DaylightFactor { outdoor_lux };
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Builds a sensor; `shape` is the enclosing shape for an `irradiancemeter`.

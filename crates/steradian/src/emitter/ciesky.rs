@@ -103,6 +103,15 @@ impl SkyModel {
     }
 }
 
+/// The sky's illuminance on an unobstructed horizontal plane (lx): the daylight factor's
+/// outdoor reference E_out (closed form 7π/9 · L_z for the overcast sky).
+pub fn horizontal_illuminance(model: SkyModel, level: SkyLevel) -> f64 {
+    match level {
+        SkyLevel::HorizontalIlluminance(e) => e,
+        SkyLevel::ZenithLuminance(l) => l * model.horizontal_factor(),
+    }
+}
+
 /// A sky model with what its luminance divides by worked out once: the general sky's
 /// parameters and its normalisation f(Z_s) φ(0).
 enum SkyShape {

@@ -31,7 +31,7 @@ mod projector;
 mod spot;
 
 pub use area::AreaLight;
-pub use ciesky::{cie_sky, SkyLevel, SkyModel};
+pub use ciesky::{cie_sky, horizontal_illuminance, SkyLevel, SkyModel};
 pub use constant::ConstantEnvironment;
 pub use directional::DirectionalLight;
 pub use emission::EmittedRay;

@@ -72,6 +72,10 @@ impl GridReading {
                     let k = LUMENS_PER_WATT as f64;
                     (k * luminance_f64(v), k * luminance_f64(e))
                 }
+                WorkplaneUnit::DaylightFactor { outdoor_lux } => {
+                    let k = 100.0 * LUMENS_PER_WATT as f64 / outdoor_lux;
+                    (k * luminance_f64(v), k * luminance_f64(e))
+                }
                 // the channels' mean, as `measure` reports a grey irradiance
                 WorkplaneUnit::Irradiance => {
                     let mean = |x: &[f32]| x.iter().map(|&a| a as f64).sum::<f64>() / 3.0;
@@ -98,6 +102,7 @@ impl GridReading {
         let unit = match unit {
             WorkplaneUnit::Illuminance => "lx",
             WorkplaneUnit::Irradiance => "W/m^2",
+            WorkplaneUnit::DaylightFactor { .. } => "%",
         };
         GridReading { nx, ny, unit, values, stderr, stats }
     }

@@ -6,7 +6,7 @@
 //! | `to_world` | transform | identity      | maps the square [−1, 1]² at z = 0 (normal +z) onto the plane, as Mitsuba's `rectangle` |
 //! | `nx`, `ny` | integer   | 10, 10        | cells along the plane's x and y |
 //! | `mode`     | string    | `point`       | `point`: at each cell's centre; `cell`: averaged over the cell |
-//! | `quantity` | string    | `illuminance` | `illuminance` (lx) or `irradiance` (W/m²): how `steradian measure` reports it |
+//! | `quantity` | string    | `illuminance` | `illuminance` (lx), `irradiance` (W/m²) or `daylight_factor` (%): how `steradian measure` reports it |
 //!
 //! The film is nx × ny pixels (a `<film>` child, if given, must be that size; its filter plays
 //! no part): pixel (i, j) is the cell at x from −1 + 2i/nx, y from 1 − 2j/ny downwards, so the
@@ -15,6 +15,13 @@
 //! as the `irradiancemeter` estimates it: every light sampled at the point, MIS with cosine
 //! samples); illuminance is 683 lm/W × its luminance Y. Samples are independent, so each
 //! cell's standard error is honest; all cells render in one pass over the grid.
+//!
+//! **Daylight factor.** With `quantity` `daylight_factor` each value is DF = 100 · E_in / E_out
+//! (%), E_in the cell's illuminance from everything in the scene (the sky through openings,
+//! inter-reflections, any lamps: the scene decides what it holds) and E_out the illuminance the
+//! scene's `ciesky` gives an unobstructed horizontal plane, in closed form for the overcast
+//! sky (7π/9 · L_z, or the `horizontal_illuminance` given). A scene without a `ciesky` has no
+//! daylight factor: the loader says so. The standard error scales with it (E_out is exact).
 
 use glam::{Vec2, Vec3};
 
@@ -31,12 +38,15 @@ pub enum WorkplaneMode {
 }
 
 /// How a work plane's values are reported.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub enum WorkplaneUnit {
     /// lx (683 lm/W × Y of the RGB irradiance).
     Illuminance,
     /// W/m² per channel.
     Irradiance,
+    /// The daylight factor, %: 100 × the illuminance over `outdoor_lux`, the sky's illuminance
+    /// on an unobstructed horizontal plane (CIE: DF = E_in / E_out under the overcast sky).
+    DaylightFactor { outdoor_lux: f64 },
 }
 
 #[derive(Clone, Debug, PartialEq)]

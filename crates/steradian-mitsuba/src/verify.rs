@@ -43,6 +43,15 @@ const SCENES: &[(&str, &str)] = &[
         include_str!("../../../scenes/validation/furnace_convex_sphere.xml"),
     ),
     ("emissive_room.xml", include_str!("../../../scenes/validation/emissive_room.xml")),
+    (
+        "rect_perpendicular_corner_irradiance.xml",
+        include_str!("../../../scenes/validation/rect_perpendicular_corner_irradiance.xml"),
+    ),
+    ("room_flux_balance.xml", include_str!("../../../scenes/validation/room_flux_balance.xml")),
+    (
+        "overcast_sky_horizontal_illuminance.xml",
+        include_str!("../../../scenes/validation/overcast_sky_horizontal_illuminance.xml"),
+    ),
 ];
 const CASES: &str = include_str!("../../../scenes/validation/cases.json");
 const MATH_CASES: &str = include_str!("../../../scenes/validation/math_cases.json");

@@ -37,6 +37,9 @@ cases!(
     env_constant_irradiance,
     furnace_convex_sphere,
     emissive_room_radiance,
+    rect_perpendicular_corner_irradiance,
+    room_flux_balance,
+    overcast_sky_horizontal_illuminance,
 );
 
 #[test]
@@ -54,6 +57,9 @@ fn every_case_has_a_test() {
         "env_constant_irradiance",
         "furnace_convex_sphere",
         "emissive_room_radiance",
+        "rect_perpendicular_corner_irradiance",
+        "room_flux_balance",
+        "overcast_sky_horizontal_illuminance",
     ];
     ours.sort();
     assert_eq!(names, ours);

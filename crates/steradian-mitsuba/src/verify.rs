@@ -52,6 +52,14 @@ const SCENES: &[(&str, &str)] = &[
         "overcast_sky_horizontal_illuminance.xml",
         include_str!("../../../scenes/validation/overcast_sky_horizontal_illuminance.xml"),
     ),
+    (
+        "roof_opening_sky_component.xml",
+        include_str!("../../../scenes/validation/roof_opening_sky_component.xml"),
+    ),
+    (
+        "window_sky_component.xml",
+        include_str!("../../../scenes/validation/window_sky_component.xml"),
+    ),
 ];
 const CASES: &str = include_str!("../../../scenes/validation/cases.json");
 const MATH_CASES: &str = include_str!("../../../scenes/validation/math_cases.json");

@@ -40,6 +40,8 @@ cases!(
     rect_perpendicular_corner_irradiance,
     room_flux_balance,
     overcast_sky_horizontal_illuminance,
+    roof_opening_sky_component,
+    window_sky_component,
 );
 
 #[test]
@@ -60,6 +62,8 @@ fn every_case_has_a_test() {
         "rect_perpendicular_corner_irradiance",
         "room_flux_balance",
         "overcast_sky_horizontal_illuminance",
+        "roof_opening_sky_component",
+        "window_sky_component",
     ];
     ours.sort();
     assert_eq!(names, ours);

@@ -30,7 +30,7 @@
 //!    luminaires' photometric files (IES LM-63, EULUMDAT) and their intensity tables.
 //! 5. `texture`: bitmaps and procedural textures.
 //! 6. `shape`: surfaces, their intersection and their sampling.
-//! 7. `bsdf`: BRDFs and BTDFs.
+//! 7. `bsdf`, `phase`: BRDFs and BTDFs; phase functions of participating media.
 //! 8. `emitter`: light sources, and how next-event estimation chooses among them.
 //! 9. `accel`: the BVH over the shapes.
 //! 10. `sensor`: cameras and meters.
@@ -46,6 +46,7 @@ pub mod film;
 pub mod geometry;
 pub mod integrator;
 pub mod param;
+pub mod phase;
 pub mod photometry;
 pub mod radiometry;
 pub mod render;

@@ -74,6 +74,7 @@ class Scene:
         checkpoint: Optional[_Path] = None,
         checkpoint_interval: float = 60.0,
         time_limit: Optional[float] = None,
+        target_error: Optional[float] = None,
     ) -> npt.NDArray[np.float32]: ...
     def measure(
         self,

@@ -119,7 +119,7 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
 }
 
 /// Says whether the target error was reached, and at how many samples.
-fn report_target(target: Option<f64>, reached: bool, spp: u32) {
+pub(crate) fn report_target(target: Option<f64>, reached: bool, spp: u32) {
     if let Some(e) = target {
         if reached {
             eprintln!("target error {}% reached at {spp} spp", e * 100.0);

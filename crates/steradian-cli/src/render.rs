@@ -63,6 +63,12 @@ pub struct RenderArgs {
     /// --resume goes on.
     #[arg(long, value_name = "SECONDS")]
     time_limit: Option<f64>,
+    /// Stop once 95 % of the pixels are within this fraction of their value at 95 %
+    /// confidence (1.96 standard errors; 0.05 = 5 %), a pixel's value counting at least 1 % of
+    /// the image's mean (so dark pixels do not hold the render). --spp is then the most
+    /// samples taken (default 1048576).
+    #[arg(long, value_name = "FRACTION")]
+    target_error: Option<f64>,
     /// Keep the finished passes' sums in FILE (written atomically every
     /// --checkpoint-interval seconds and at Ctrl-C, deleted when the image is written), so that
     /// a killed render can go on with --resume FILE.
@@ -285,7 +291,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         on_pass: writer.as_ref().map(|_| &on_pass as &(dyn Fn(&_) + Sync)),
         scene_digest,
         time_limit,
-        target_error: None,
+        target_error: args.target_error,
     };
     let out = render(&scene, &opts).map_err(|e| match (e, &args.resume) {
         (RenderError::Resume(e), Some(path)) => {
@@ -298,7 +304,8 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         if let Some(e) = w.failure() {
             eprintln!("warning: {e}");
         }
-        if out.interrupted {
+        // a render that reached its target error is done, not interrupted
+        if out.interrupted && !out.target_reached {
             w.save(&out.sums)?;
             eprintln!(
                 "checkpoint: {} holds {} of {} samples per pixel; continue with --resume {}",
@@ -343,12 +350,13 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             "time limit reached: the image holds {} of {} samples per pixel",
             out.spp, out.spp_requested
         );
-    } else if out.interrupted {
+    } else if out.interrupted && !out.target_reached {
         eprintln!(
             "interrupted: the image holds {} of {} samples per pixel",
             out.spp, out.spp_requested
         );
     }
+    crate::measure::report_target(args.target_error, out.target_reached, out.spp);
     // the work counted as it is done: a camera sample of `path` with n branches traces n
     // paths from its first hit; the particle tracer's samples are light paths
     let per_second = |n: u64| n as f64 / secs.max(1e-9) / 1e6;
@@ -407,7 +415,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         stats.bytes as f64 / prims.max(1) as f64
     );
     println!("wrote {} and {}", output.display(), png.display());
-    if let (Some(w), false) = (&writer, out.interrupted) {
+    if let (Some(w), false) = (&writer, out.interrupted && !out.target_reached) {
         // the image holds every sample: the checkpoint has done its work
         w.remove();
     }

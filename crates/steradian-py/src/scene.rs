@@ -190,6 +190,9 @@ impl Scene {
     /// - `time_limit`: seconds after which the render ends: the image holds the whole passes
     ///   finished by then (about half the work done or more); with `checkpoint`, a later call
     ///   goes on. `measure` takes it too.
+    /// - `target_error`: stop once 95 % of the pixels are within this fraction of their value
+    ///   at 95 % confidence, a pixel's value counting at least 1 % of the image's mean; `spp`
+    ///   is then the most samples taken (default 1048576). `measure` takes it too, per reading.
     /// - `checkpoint`: a file that keeps the finished passes' sums (written atomically every
     ///   `checkpoint_interval` seconds and when the render is stopped); a render given a
     ///   checkpoint that exists continues from it, and returns the uninterrupted render's image
@@ -203,9 +206,10 @@ impl Scene {
     /// The GIL is released while rendering. Ctrl-C stops the render and raises
     /// `KeyboardInterrupt`.
     #[pyo3(
-        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None),
-        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None)"
+        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None, target_error=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None, target_error=None)"
     )]
+    #[allow(clippy::too_many_arguments)]
     fn render<'py>(
         &self,
         py: Python<'py>,
@@ -218,6 +222,7 @@ impl Scene {
         checkpoint: Option<PathBuf>,
         checkpoint_interval: f64,
         time_limit: Option<f64>,
+        target_error: Option<f64>,
     ) -> PyResult<Bound<'py, PyAny>> {
         let time_limit = time_limit_arg(time_limit)?;
         let pixel_quantity = pixel_quantity(quantity)?;
@@ -262,6 +267,7 @@ impl Scene {
                 on_pass: writer.as_ref().map(|_| &save as &(dyn Fn(&RenderSums) + Sync)),
                 scene_digest,
                 time_limit,
+                target_error,
                 ..Default::default()
             };
             let out = render(scene, &opts).map_err(|e| match (e, &checkpoint) {
@@ -272,7 +278,7 @@ impl Scene {
                 (e, _) => render_error(e),
             })?;
             if let Some(w) = &writer {
-                if out.interrupted {
+                if out.interrupted && !out.target_reached {
                     w.save(&out.sums).map_err(PyOSError::new_err)?;
                 } else {
                     // the image holds every sample: the checkpoint has done its work

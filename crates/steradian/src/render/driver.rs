@@ -114,12 +114,6 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
     // the target error, checked as each pass is added
     let reached = AtomicBool::new(false);
     let cancelled = || stopped() || out_of_time() || reached.load(Ordering::Relaxed);
-    if opts.target_error.is_some() && !plan.sensor.is_meter() {
-        return Err(RenderError::BadOption {
-            option: "target-error",
-            reason: "applies to meters and work planes (an image's is not supported yet)",
-        });
-    }
     let pool = thread_pool(opts)?;
     let (integrator, pilot_run, header) = resolve_branches(job, &plan, opts, &pool);
 
@@ -158,7 +152,13 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         sums.push_pass(pass_end, pass);
         have_pass.store(true, Ordering::Relaxed);
         if let Some(e) = opts.target_error {
-            if super::target_error::reached(sums.film(), sums.end() - sums.first(), e) {
+            let (film, spp) = (sums.film(), sums.end() - sums.first());
+            let done = if plan.sensor.is_meter() {
+                super::target_error::reached(film, spp, e)
+            } else {
+                super::target_error::image_reached(film, spp, e)
+            };
+            if done {
                 reached.store(true, Ordering::Relaxed);
             }
         }

@@ -40,7 +40,10 @@ pub use measure::{measure, Measurement};
 pub use options::{Progress, RenderError, RenderOptions, RenderOutput};
 pub use quantity::PixelQuantity;
 pub use sums::{digest_inputs, RenderSums, SumsError, SumsHeader};
-pub use target_error::{CONFIDENCE_Z, MAX_SPP_FOR_TARGET, MIN_SAMPLES_FOR_TARGET};
+pub use target_error::{
+    CONFIDENCE_Z, IMAGE_ERROR_FLOOR, IMAGE_PIXEL_QUANTILE, MAX_SPP_FOR_TARGET,
+    MIN_SAMPLES_FOR_TARGET,
+};
 
 use crate::integrator::Integrator;
 use crate::scene::Scene;

@@ -60,9 +60,10 @@ pub struct RenderOptions<'a> {
     /// double in size up to spp/32, so about half the work done or more is kept; the first
     /// pass is always finished.
     pub time_limit: Option<Duration>,
-    /// For meters and work planes: stop after the first pass at which every reading's error
-    /// is at most this fraction of its value (`target_error.rs`); `spp` is then the most
-    /// samples taken (`MAX_SPP_FOR_TARGET` where it is unset).
+    /// Stop after the first pass at which every reading's error (meters, work planes) or 95 %
+    /// of the pixels' errors (images) is at most this fraction of the value
+    /// (`target_error.rs`); `spp` is then the most samples taken (`MAX_SPP_FOR_TARGET` where
+    /// it is unset).
     pub target_error: Option<f64>,
 }
 
@@ -116,7 +117,7 @@ pub struct RenderOutput {
     pub interrupted: bool,
     /// The render stopped at its time limit before its last sample.
     pub time_limited: bool,
-    /// The render stopped because every reading reached `RenderOptions::target_error`.
+    /// The render stopped because it reached `RenderOptions::target_error`.
     pub target_reached: bool,
 }
 

@@ -10,6 +10,15 @@
 //! up to spp/32), and `spp` caps the samples. A reading of 0 with σ = 0 (a point no light
 //! reaches) counts as reached.
 //!
+//! **Images.** A pixel of an image reaches E when 1.96 · σ(Y) ≤ E · (Y + 0.01 · Ȳ), Ȳ the
+//! image's mean luminance: relative to the pixel's own value, with a floor of 1 % of the image
+//! so that black and near-black pixels (shadows, an empty background) do not hold the render
+//! forever; the image reaches E when [`IMAGE_PIXEL_QUANTILE`] of its pixels have. Each pixel's
+//! σ is its own (the film's weighted moments), so the rule holds for any reconstruction filter,
+//! where a rule on the image mean would have to know how the filter correlates neighbours.
+//! About 95 % of the pixels that reached E are within E of the truth, so about 90 % of all
+//! pixels (the test checks at least 85 % against a closed form).
+//!
 //! Stopping on an estimate of the error is a sequential rule: renders that stop early are
 //! those whose error estimate came out low, which biases the reading by a fraction of σ that
 //! is far below E at these sample counts (the test measures the rate, not only the mean).
@@ -26,6 +35,13 @@ pub const MAX_SPP_FOR_TARGET: u32 = 1 << 20;
 /// Samples per pixel before a target error may end a render.
 pub const MIN_SAMPLES_FOR_TARGET: u32 = 64;
 
+/// Fraction of an image's pixels that must reach the target error.
+pub const IMAGE_PIXEL_QUANTILE: f64 = 0.95;
+
+/// An image pixel's error is relative to its luminance plus this fraction of the image's mean
+/// luminance.
+pub const IMAGE_ERROR_FLOOR: f64 = 0.01;
+
 /// Whether every pixel of `film` (holding `spp` samples per pixel) has reached relative error
 /// `e` (see the module docs).
 pub fn reached(film: &Film, spp: u32, e: f64) -> bool {
@@ -37,4 +53,23 @@ pub fn reached(film: &Film, spp: u32, e: f64) -> bool {
         let (v, s) = (luminance_f64(v), luminance_f64(s));
         CONFIDENCE_Z * s <= e * v.abs() || (v == 0.0 && s == 0.0)
     })
+}
+
+/// Whether the image on `film` (holding `spp` samples per pixel) has reached relative error
+/// `e` (see the module docs).
+pub fn image_reached(film: &Film, spp: u32, e: f64) -> bool {
+    if spp < MIN_SAMPLES_FOR_TARGET {
+        return false;
+    }
+    let (value, error) = (film.develop(), film.develop_stderr());
+    let y: Vec<(f64, f64)> = value
+        .data
+        .chunks_exact(3)
+        .zip(error.data.chunks_exact(3))
+        .map(|(v, s)| (luminance_f64(v), luminance_f64(s)))
+        .collect();
+    let n = y.len().max(1) as f64;
+    let floor = IMAGE_ERROR_FLOOR * (y.iter().map(|(v, _)| v).sum::<f64>() / n).abs();
+    let reached = y.iter().filter(|(v, s)| CONFIDENCE_Z * s <= e * (v.abs() + floor)).count();
+    reached as f64 >= IMAGE_PIXEL_QUANTILE * n
 }

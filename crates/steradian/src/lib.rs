@@ -31,7 +31,8 @@
 //! 5. `texture`: bitmaps and procedural textures.
 //! 6. `shape`: surfaces, their intersection and their sampling.
 //! 7. `bsdf`, `phase`: BRDFs and BTDFs; phase functions of participating media.
-//! 8. `emitter`: light sources, and how next-event estimation chooses among them.
+//! 8. `emitter`, `medium`: light sources, and how next-event estimation chooses among them;
+//!    participating media.
 //! 9. `accel`: the BVH over the shapes.
 //! 10. `sensor`: cameras and meters.
 //! 11. `scene`: shapes, materials, lights and sensors with their BVH.
@@ -45,6 +46,7 @@ pub mod emitter;
 pub mod film;
 pub mod geometry;
 pub mod integrator;
+pub mod medium;
 pub mod param;
 pub mod phase;
 pub mod photometry;

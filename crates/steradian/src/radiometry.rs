@@ -155,6 +155,26 @@ pub fn rect_parallel_corner_irradiance(radiance: f64, a: f64, b: f64, d: f64) ->
     PI * radiance * f
 }
 
+/// Beer–Lambert: the fraction of light that crosses a distance `d` (m) of a medium of
+/// extinction coefficient `sigma_t` (1/m), T = exp(−σ_t d).
+pub fn beer_lambert(sigma_t: f64, d: f64) -> f64 {
+    (-sigma_t * d).exp()
+}
+
+/// Irradiance (W/m²) from an isotropic point source of intensity I (W/sr) at distance r, at
+/// incidence angle θ, through an absorbing slab of thickness `thickness` (m, parallel to the
+/// receiving plane, crossed at the same angle θ) of extinction `sigma_t` (1/m) in otherwise
+/// clear space: E = I cos θ / r² · exp(−σ_t thickness / cos θ).
+pub fn point_irradiance_through_slab(
+    intensity: f64,
+    r: f64,
+    theta: f64,
+    sigma_t: f64,
+    thickness: f64,
+) -> f64 {
+    point_irradiance_at(intensity, r, theta) * beer_lambert(sigma_t, thickness / theta.cos())
+}
+
 /// Configuration factor from a differential area at `p` with unit normal `n` to a planar
 /// polygon (`vertices` in order, all on the side `n` points to): Lambert's contour integral
 /// F = (1/2π) Σ γ_i n·u_i over the edges, γ_i the angle the edge subtends at `p` and u_i the
@@ -340,5 +360,20 @@ mod tests {
         let q =
             quad(DVec3::ZERO, DVec3::Z, tilted[0], tilted[1] - tilted[0], tilted[3] - tilted[0]);
         assert!((f / q - 1.0).abs() < 1e-6, "tilted: {f} vs {q}");
+    }
+
+    /// Beer–Lambert composes over consecutive distances, and the slab's path length grows as
+    /// 1/cos θ.
+    #[test]
+    fn transmittance_through_media() {
+        let (s, a, b) = (0.7, 0.4, 1.3);
+        assert!((beer_lambert(s, a) * beer_lambert(s, b) - beer_lambert(s, a + b)).abs() < 1e-15);
+        assert_eq!(beer_lambert(s, 0.0), 1.0);
+        let (i, r, t) = (10.0, 2.0, 0.5);
+        let normal = point_irradiance_through_slab(i, r, 0.0, s, t);
+        assert!((normal - i / (r * r) * (-s * t).exp()).abs() < 1e-12);
+        let theta = 60f64.to_radians();
+        let oblique = point_irradiance_through_slab(i, r, theta, s, t);
+        assert!((oblique - i * 0.5 / (r * r) * (-s * t * 2.0).exp()).abs() < 1e-12);
     }
 }

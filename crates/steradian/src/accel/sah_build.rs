@@ -247,6 +247,8 @@ struct Binner {
     scale: Vec3A,
     /// The last bin's index, n − 1.
     last: f32,
+    /// Whether the range holds analytic primitives to count (its extent knows).
+    analytic: bool,
 }
 
 impl Binner {
@@ -261,7 +263,7 @@ impl Binner {
                 0.0
             }
         }));
-        Binner { n, origin: e.clower, scale, last: (n - 1) as f32 }
+        Binner { n, origin: e.clower, scale, last: (n - 1) as f32, analytic: e.other > 0 }
     }
 
     /// The bin of `p` on each axis.
@@ -296,10 +298,10 @@ impl Binner {
     /// usually fall in the same bins, and one set of bins makes each update wait for the
     /// previous one's store (the binning took 28 % of a large build so).
     fn bin_into(&self, prims: &[BuildPrim], bins: &mut [Bins; 2]) {
-        if prims.iter().all(BuildPrim::is_triangle) {
-            self.bin_pairs::<false>(prims, bins);
-        } else {
+        if self.analytic {
             self.bin_pairs::<true>(prims, bins);
+        } else {
+            self.bin_pairs::<false>(prims, bins);
         }
         let [a, b] = bins;
         for axis in 0..3 {

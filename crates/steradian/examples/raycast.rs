@@ -206,7 +206,7 @@ fn main() {
         stats.bytes as f64 / nt as f64,
         mesh_bytes as f64 / nt as f64,
         (stats.bytes + mesh_bytes) as f64 / nt as f64,
-        stats.sah_cost,
+        accel.sah_cost(),
     );
 
     for set in &sets {

@@ -94,7 +94,7 @@ impl Default for Accel {
 }
 
 /// Sizes of the structure.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct AccelStats {
     pub nodes: usize,
     pub triangle_packets: usize,
@@ -105,10 +105,6 @@ pub struct AccelStats {
     pub instances: usize,
     /// Bytes of nodes, triangle packets and analytic references.
     pub bytes: usize,
-    /// The tree's surface-area cost: the expected number of node visits plus triangle-packet
-    /// and analytic-primitive tests of a ray that crosses the root box, each box entered with
-    /// probability (its area / the root's), as the build's SAH prices them.
-    pub sah_cost: f64,
 }
 
 impl Accel {
@@ -208,12 +204,14 @@ impl Accel {
             bytes: self.nodes.len() * std::mem::size_of::<Node8>()
                 + self.tris.len() * (std::mem::size_of::<Tri4>() + std::mem::size_of::<Tri4Ids>())
                 + self.others.len() * std::mem::size_of::<PrimRef>(),
-            sah_cost: self.sah_cost(),
         }
     }
 
-    /// See [`AccelStats::sah_cost`].
-    fn sah_cost(&self) -> f64 {
+    /// The tree's surface-area cost: the expected number of node visits plus triangle-packet
+    /// and analytic-primitive tests of a ray that crosses the root box, each box entered with
+    /// probability (its area / the root's), as the build's SAH prices them. A walk of the
+    /// whole tree, for benchmarks (not part of [`Accel::stats`], which every render prints).
+    pub fn sah_cost(&self) -> f64 {
         let root_area = self.bounds.surface_area() as f64;
         if self.root == EMPTY_CHILD || root_area.is_nan() || root_area <= 0.0 {
             return 0.0;

@@ -301,18 +301,9 @@ impl Mesh {
             return None;
         }
         let idx = cdf.partition_point(|&c| c <= u.x).min(cdf.len() - 1);
-        let (lo, pmf) = self.cdf_interval(idx);
+        let (lo, pmf) = cdf_interval(cdf, idx);
         let ux = ((u.x - lo) / pmf).clamp(0.0, 1.0 - f32::EPSILON / 2.0);
         Some((idx as u32, pmf, Vec2::new(ux, u.y)))
-    }
-
-    /// Start of triangle `idx`'s interval in the area CDF, and its probability (the interval's
-    /// length). `cdf` must not be empty.
-    #[inline]
-    fn cdf_interval(&self, idx: usize) -> (f32, f32) {
-        let cdf = self.cdf();
-        let lo = if idx == 0 { 0.0 } else { cdf[idx - 1] };
-        (lo, cdf[idx] - lo)
     }
 
     /// Uniform by area: picks a triangle with probability proportional to its area (the
@@ -385,14 +376,23 @@ impl Mesh {
     /// Density per solid angle of [`Mesh::sample_direction`] for the point `p` (normal `n`) of
     /// triangle `prim`.
     pub fn pdf_direction(&self, reference: Vec3, p: Vec3, n: Vec3, prim: u32) -> f32 {
-        if self.cdf().is_empty() || prim as usize >= self.indices.len() {
+        let cdf = self.cdf();
+        if cdf.is_empty() || prim as usize >= self.indices.len() {
             return 0.0;
         }
         match self.spherical(reference, prim) {
-            Some(st) => self.cdf_interval(prim as usize).1 / st.solid_angle() as f32,
+            Some(st) => cdf_interval(cdf, prim as usize).1 / st.solid_angle() as f32,
             None => area_to_solid_angle(1.0 / self.area, reference, p, n),
         }
     }
+}
+
+/// Start of triangle `idx`'s interval in the area CDF `cdf`, and its probability (the
+/// interval's length). `cdf` must not be empty.
+#[inline]
+fn cdf_interval(cdf: &[f32], idx: usize) -> (f32, f32) {
+    let lo = if idx == 0 { 0.0 } else { cdf[idx - 1] };
+    (lo, cdf[idx] - lo)
 }
 
 /// The area of triangle `tri`, m², in f64; 0 where it is not finite (degenerate data).

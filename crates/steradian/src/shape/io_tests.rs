@@ -219,6 +219,17 @@ fn ply_errors_never_panic() {
     assert!(read_ply(&write_file(&dir, "neg.ply", neg.as_bytes())).is_err());
     let noz = TET_ASCII.replace("property float z\n", "");
     assert!(read_ply(&write_file(&dir, "noz.ply", noz.as_bytes())).is_err());
+    // faces before the vertices: their indices are checked once the vertices are read
+    let early = "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int vertex_indices\n\
+element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n\
+3 0 1 9\n0 0 0\n1 0 0\n0 1 0\n";
+    let e = read_ply(&write_file(&dir, "early.ply", early.as_bytes())).unwrap_err();
+    assert!(e.to_string().contains("vertex 9"), "{e}");
+    let good = early.replace("3 0 1 9", "3 0 1 2");
+    assert_eq!(
+        read_ply(&write_file(&dir, "early.ply", good.as_bytes())).unwrap().indices,
+        vec![[0, 1, 2]]
+    );
     let nofaces = "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n";
     assert!(read_ply(&write_file(&dir, "nofaces.ply", nofaces.as_bytes())).is_err());
 }

@@ -453,6 +453,9 @@ struct Output {
     triangles_per_face: Vec<usize>,
     has_vertices: bool,
     has_faces: bool,
+    /// Whether the faces' indices were checked against the vertex count as they were read
+    /// (the faces followed the vertices).
+    indices_checked: bool,
 }
 
 fn read(file: std::fs::File, file_len: u64) -> Result<(MeshData, Vec<MeshAttributeData>), String> {
@@ -581,11 +584,11 @@ fn read_faces(
     // faces usually follow the vertices: their indices are checked here, with the face's
     // number; otherwise once all is read (`finish`)
     let nv = if out.has_vertices { out.positions.len() } else { usize::MAX };
+    out.indices_checked = out.has_vertices;
     let mut list = Vec::new();
     let mut face = Vec::new();
     let mut extras = vec![0f32; fields.len()];
     for f in 0..def.count {
-        face.clear();
         for (prop, slot) in def.properties.iter().zip(&slots) {
             match prop.ty {
                 PropertyType::Scalar(ty) => {
@@ -649,7 +652,8 @@ fn finish(out: Output) -> Result<(MeshData, Vec<MeshAttributeData>), String> {
         return Err("no \"face\" element".into());
     }
     let nv = out.positions.len();
-    if let Some(f) = out.indices.iter().position(|t| t.iter().any(|&i| i as usize >= nv)) {
+    let unchecked = if out.indices_checked { &[][..] } else { &out.indices[..] };
+    if let Some(f) = unchecked.iter().position(|t| t.iter().any(|&i| i as usize >= nv)) {
         let bad = out.indices[f].iter().find(|&&i| i as usize >= nv).expect("found above");
         return Err(format!(
             "triangle {f} refers to vertex {bad}, but there are only {nv} vertices"

@@ -45,14 +45,10 @@ pub const IMAGE_ERROR_FLOOR: f64 = 0.01;
 /// Whether every pixel of `film` (holding `spp` samples per pixel) has reached relative error
 /// `e` (see the module docs).
 pub fn reached(film: &Film, spp: u32, e: f64) -> bool {
-    if spp < MIN_SAMPLES_FOR_TARGET {
-        return false;
-    }
-    let (value, error) = (film.develop(), film.develop_stderr());
-    value.data.chunks_exact(3).zip(error.data.chunks_exact(3)).all(|(v, s)| {
-        let (v, s) = (luminance_f64(v), luminance_f64(s));
-        CONFIDENCE_Z * s <= e * v.abs() || (v == 0.0 && s == 0.0)
-    })
+    spp >= MIN_SAMPLES_FOR_TARGET
+        && pixel_luminances(film)
+            .iter()
+            .all(|&(v, s)| CONFIDENCE_Z * s <= e * v.abs() || (v == 0.0 && s == 0.0))
 }
 
 /// Whether the image on `film` (holding `spp` samples per pixel) has reached relative error
@@ -61,15 +57,20 @@ pub fn image_reached(film: &Film, spp: u32, e: f64) -> bool {
     if spp < MIN_SAMPLES_FOR_TARGET {
         return false;
     }
-    let (value, error) = (film.develop(), film.develop_stderr());
-    let y: Vec<(f64, f64)> = value
-        .data
-        .chunks_exact(3)
-        .zip(error.data.chunks_exact(3))
-        .map(|(v, s)| (luminance_f64(v), luminance_f64(s)))
-        .collect();
+    let y = pixel_luminances(film);
     let n = y.len().max(1) as f64;
     let floor = IMAGE_ERROR_FLOOR * (y.iter().map(|(v, _)| v).sum::<f64>() / n).abs();
     let reached = y.iter().filter(|(v, s)| CONFIDENCE_Z * s <= e * (v.abs() + floor)).count();
     reached as f64 >= IMAGE_PIXEL_QUANTILE * n
+}
+
+/// Each pixel's luminance and the bound Σ w_c σ_c on its standard error.
+fn pixel_luminances(film: &Film) -> Vec<(f64, f64)> {
+    let (value, error) = (film.develop(), film.develop_stderr());
+    value
+        .data
+        .chunks_exact(3)
+        .zip(error.data.chunks_exact(3))
+        .map(|(v, s)| (luminance_f64(v), luminance_f64(s)))
+        .collect()
 }

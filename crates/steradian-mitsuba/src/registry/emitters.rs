@@ -105,6 +105,23 @@ fn photometric_strength(
     from_photometric(value * factor, color).map(Some).map_err(|e| prop_err(format!("{name} {e}")))
 }
 
+/// A light's strength: one of steradian's photometric parameters ([`photometric_strength`]),
+/// else Mitsuba's radiometric spectrum `radiometric` (`default` in each channel where it is
+/// not given), checked finite and non-negative.
+fn strength(
+    node: &PluginNode,
+    radiometric: &str,
+    default: f32,
+    photometric: &[(&str, &str, f32)],
+) -> Result<Spectrum, LoadError> {
+    let v = match photometric_strength(node, radiometric, photometric)? {
+        Some(v) => v,
+        None => node.props.get_spectrum(radiometric)?.unwrap_or(Spectrum::splat(default)),
+    };
+    check_non_negative(node, radiometric, v)?;
+    Ok(v)
+}
+
 /// A position given either as `position` or as the translation of `to_world`, not both.
 fn position_or_to_world(node: &PluginNode) -> Result<Transform, LoadError> {
     let p = &node.props;
@@ -250,31 +267,20 @@ pub(crate) fn build_standalone(
 }
 
 fn point(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
-    let default = Spectrum::splat(PointLight::DEFAULT_INTENSITY);
     let photometric = [
         ("luminous_intensity", "cd", 1.0),
         // isotropic: I = Φ/4π
         ("luminous_flux", "lm", 1.0 / (4.0 * std::f32::consts::PI)),
     ];
-    let intensity = match photometric_strength(node, "intensity", &photometric)? {
-        Some(v) => v,
-        None => node.props.get_spectrum("intensity")?.unwrap_or(default),
-    };
-    check_non_negative(node, "intensity", intensity)?;
+    let intensity = strength(node, "intensity", PointLight::DEFAULT_INTENSITY, &photometric)?;
     let to_world = position_or_to_world(node)?;
     Ok(Emitter::Point(PointLight::new(to_world.point(Vec3::ZERO), intensity)))
 }
 
 fn spot(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
-    let intensity =
-        match photometric_strength(node, "intensity", &[("luminous_intensity", "cd", 1.0)])? {
-            Some(v) => v,
-            None => p
-                .get_spectrum("intensity")?
-                .unwrap_or(Spectrum::splat(SpotLight::DEFAULT_INTENSITY)),
-        };
-    check_non_negative(node, "intensity", intensity)?;
+    let cd = [("luminous_intensity", "cd", 1.0)];
+    let intensity = strength(node, "intensity", SpotLight::DEFAULT_INTENSITY, &cd)?;
     let cutoff = p.get_float("cutoff_angle")?.unwrap_or(SpotLight::DEFAULT_CUTOFF_ANGLE);
     let beam = p.get_float("beam_width")?.unwrap_or(cutoff * SpotLight::DEFAULT_BEAM_WIDTH_RATIO);
     // Checked here in the user's degrees (the core's check, in radians, would echo
@@ -307,14 +313,8 @@ fn spot(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
 
 fn directional(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
-    let irradiance = match photometric_strength(node, "irradiance", &[("illuminance", "lx", 1.0)])?
-    {
-        Some(v) => v,
-        None => p
-            .get_spectrum("irradiance")?
-            .unwrap_or(Spectrum::splat(DirectionalLight::DEFAULT_IRRADIANCE)),
-    };
-    check_non_negative(node, "irradiance", irradiance)?;
+    let lx = [("illuminance", "lx", 1.0)];
+    let irradiance = strength(node, "irradiance", DirectionalLight::DEFAULT_IRRADIANCE, &lx)?;
     let direction = match (p.get_vector("direction")?, p.get_transform("to_world")?) {
         (Some(_), Some(_)) => {
             return Err(LoadError::at(
@@ -330,12 +330,8 @@ fn directional(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadEr
 }
 
 fn constant(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
-    let default = Spectrum::splat(ConstantEnvironment::DEFAULT_RADIANCE);
-    let radiance = match photometric_strength(node, "radiance", &[("luminance", "cd/m²", 1.0)])? {
-        Some(v) => v,
-        None => node.props.get_spectrum("radiance")?.unwrap_or(default),
-    };
-    check_non_negative(node, "radiance", radiance)?;
+    let nits = [("luminance", "cd/m²", 1.0)];
+    let radiance = strength(node, "radiance", ConstantEnvironment::DEFAULT_RADIANCE, &nits)?;
     Ok(Emitter::Constant(ConstantEnvironment::new(radiance)))
 }
 

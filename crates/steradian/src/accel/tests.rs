@@ -420,21 +420,10 @@ fn instances_match_their_flattened_copies() {
 /// builder's parallel paths (ranges above 4096 primitives split over threads, above 65536 bin
 /// over threads).
 fn wavy_grid(n: u32) -> Shape {
-    let mut pos = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
-            pos.push(Vec3::new(x, y, 0.1 * (9.0 * x).sin() * (7.0 * y).cos()));
-        }
-    }
-    let mut idx = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let v = j * (n + 1) + i;
-            idx.push([v, v + 1, v + n + 2]);
-            idx.push([v, v + n + 2, v + n + 1]);
-        }
-    }
+    let (pos, idx) = crate::testkit::scenes::grid_mesh(n, |i, j| {
+        let (x, y) = (i as f32 / n as f32, j as f32 / n as f32);
+        Vec3::new(x, y, 0.1 * (9.0 * x).sin() * (7.0 * y).cos())
+    });
     Shape::Mesh(Mesh::new(pos, None, None, idx, &Transform::IDENTITY, false, true).unwrap())
 }
 

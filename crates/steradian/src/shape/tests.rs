@@ -625,23 +625,10 @@ fn mesh_sampling() {
 fn smooth_normals_are_angle_weighted_on_any_thread_count() {
     let mut r = crate::sampling::Pcg32::new(5, 2);
     let n = 160u32; // 51,200 triangles: more vertices than one thread's share
-    let mut pos = Vec::new();
-    for j in 0..=n {
-        for i in 0..=n {
-            let jitter = Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) * 0.3;
-            pos.push(
-                Vec3::new(i as f32, j as f32, 0.0) + jitter + Vec3::Z * (i as f32 * 0.2).sin(),
-            );
-        }
-    }
-    let mut idx = Vec::new();
-    for j in 0..n {
-        for i in 0..n {
-            let v = j * (n + 1) + i;
-            idx.push([v, v + 1, v + n + 2]);
-            idx.push([v, v + n + 2, v + n + 1]);
-        }
-    }
+    let (pos, idx) = crate::testkit::scenes::grid_mesh(n, |i, j| {
+        let jitter = Vec3::new(r.next_f32(), r.next_f32(), r.next_f32()) * 0.3;
+        Vec3::new(i as f32, j as f32, 0.0) + jitter + Vec3::Z * (i as f32 * 0.2).sin()
+    });
     let mut want = vec![glam::DVec3::ZERO; pos.len()];
     for tri in &idx {
         let v = tri.map(|i| pos[i as usize].as_dvec3());

@@ -8,7 +8,7 @@
 //! - [`bsdf`]: the checks every BSDF passes (χ², sample weight and pdf consistency,
 //!   albedo) and the microfacet parameter grid.
 //! - [`scenes`]: small scenes built in code with their closed-form radiance (a furnace, a
-//!   plane under a point light), and the radiance estimate along a ray.
+//!   plane under a point light), the radiance estimate along a ray, and a grid mesh.
 //! - [`stats`]: mean and standard error of i.i.d. samples.
 //! - [`files`]: a fresh temporary directory per test.
 

@@ -15,6 +15,23 @@ use crate::shape::{Rectangle, Shape, Sphere};
 use crate::texture::Texture;
 use crate::Spectrum;
 
+/// A grid of `n × n` quads (2n² triangles, counter-clockwise seen from +z where the grid
+/// lies flat): `position(i, j)` places vertex (i, j) for i, j in 0..=n, called row by row
+/// (j outer). Returns the positions and the triangles.
+pub fn grid_mesh(n: u32, mut position: impl FnMut(u32, u32) -> Vec3) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let positions = (0..=n).flat_map(|j| (0..=n).map(move |i| (i, j))).map(|(i, j)| position(i, j));
+    let positions: Vec<Vec3> = positions.collect();
+    let mut indices = Vec::with_capacity(2 * (n * n) as usize);
+    for j in 0..n {
+        for i in 0..n {
+            let v = j * (n + 1) + i;
+            indices.push([v, v + 1, v + n + 2]);
+            indices.push([v, v + n + 2, v + n + 1]);
+        }
+    }
+    (positions, indices)
+}
+
 /// A furnace: the inside of the unit sphere around the origin (normals flipped inwards),
 /// diffuse with reflectance `rho` and emitting radiance `le` (W/(m²·sr)). Every ray from
 /// inside sees the radiance [`furnace_radiance`].

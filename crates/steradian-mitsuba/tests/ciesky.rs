@@ -7,6 +7,8 @@ use std::path::Path;
 use steradian::emitter::LUMENS_PER_WATT;
 use steradian::render::{measure, RenderOptions};
 
+mod common;
+
 /// A tiny upward-facing disk meter at the origin under `sky` (y up).
 fn scene(sky: &str) -> String {
     format!(
@@ -57,12 +59,7 @@ fn a_sky_set_by_its_horizontal_illuminance_gives_it_back() {
 
 #[test]
 fn bad_skies_are_located_errors() {
-    let load = |xml: &str| {
-        steradian_mitsuba::load_string(xml, Path::new("sky.xml"), Path::new("."), &[])
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default()
-    };
+    let load = |xml: &str| common::load_error(xml, "sky.xml");
     let e = load(&scene(
         r#"<string name="sky" value="16"/><float name="zenith_luminance" value="1"/>"#,
     ));

@@ -9,6 +9,8 @@ use std::path::Path;
 use steradian::render::{render, GridReading, RenderOptions};
 use steradian::sensor::{SensorKind, WorkplaneUnit};
 
+mod common;
+
 /// A tube of radius 1 and height `h` (y up) with a one-point work plane at its bottom centre,
 /// under `sky`.
 fn scene(h: f64, sky: &str) -> String {
@@ -69,15 +71,7 @@ fn daylight_factor_at_the_bottom_of_a_tube_is_the_overcast_closed_form() {
 #[test]
 fn a_daylight_factor_needs_a_sky() {
     let point = r#"<emitter type="point"><point name="position" x="0" y="2" z="0"/></emitter>"#;
-    let e = steradian_mitsuba::load_string(
-        &scene(1.0, point),
-        Path::new("df.xml"),
-        Path::new("."),
-        &[],
-    )
-    .err()
-    .map(|e| e.to_string())
-    .unwrap_or_default();
+    let e = common::load_error(&scene(1.0, point), "df.xml");
     assert!(e.contains("df.xml:") && e.contains("ciesky"), "{e}");
     // and the unit is resolved to the sky's horizontal illuminance
     let sky = r#"<emitter type="ciesky"><float name="zenith_luminance" value="900"/></emitter>"#;

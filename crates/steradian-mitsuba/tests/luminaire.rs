@@ -7,6 +7,8 @@ use steradian::emitter::LUMENS_PER_WATT;
 use steradian::render::{render, RenderOptions};
 use steradian::testkit::{temp_dir, write_file};
 
+mod common;
+
 const IES: &str =
     include_str!("../../steradian/src/photometry/testdata/cosine_3000lm_point_0-180.ies");
 const LDT: &str =
@@ -102,12 +104,7 @@ fn bad_luminaires_are_located_errors() {
     write_file(&dir, "down.ies", IES);
     write_file(&dir, "bad.ies", IES.replace("954.929659", "x"));
     write_file(&dir, "down.txt", IES);
-    let load = |xml: &str| {
-        steradian_mitsuba::load_string(xml, Path::new("luminaire.xml"), Path::new("."), &[])
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default()
-    };
+    let load = |xml: &str| common::load_error(xml, "luminaire.xml");
     let e = load(&scene(&dir, "missing.ies", 0.0, 0.0, ""));
     assert!(e.contains("luminaire.xml:") && e.contains("cannot read"), "{e}");
     let e = load(&scene(&dir, "bad.ies", 0.0, 0.0, ""));

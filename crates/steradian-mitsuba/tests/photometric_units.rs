@@ -8,8 +8,9 @@ use std::path::Path;
 
 use steradian::emitter::LUMENS_PER_WATT;
 use steradian::render::{render, RenderOptions};
-use steradian::spectrum::luminance;
-use steradian::Spectrum;
+use steradian::spectrum::luminance_f64;
+
+mod common;
 
 /// `lights` and an upward-facing tiny disk meter at the origin.
 fn scene(lights: &str) -> String {
@@ -27,14 +28,13 @@ fn scene(lights: &str) -> String {
     )
 }
 
-fn load(xml: &str) -> Result<steradian::render::Job, String> {
-    steradian_mitsuba::load_string(xml, Path::new("units.xml"), Path::new("."), &[])
-        .map_err(|e| e.to_string())
-}
-
-/// The meter's illuminance (lx) and its standard error, at `spp` samples.
+/// The meter's illuminance (lx) and its standard error, at `spp` samples: 683 × Y, and for
+/// the error the bound Σ w_c σ_c of `luminance_f64` (the channels' errors are correlated: one
+/// path per sample).
 fn lux(lights: &str, spp: u32) -> (f64, f64) {
-    let job = load(&scene(lights)).unwrap_or_else(|e| panic!("{e}"));
+    let job =
+        steradian_mitsuba::load_string(&scene(lights), Path::new("units.xml"), Path::new("."), &[])
+            .unwrap_or_else(|e| panic!("{e}"));
     let sensor = job.scene.sensor_index("meter").unwrap();
     let opts = RenderOptions {
         spp: Some(spp),
@@ -44,12 +44,9 @@ fn lux(lights: &str, spp: u32) -> (f64, f64) {
         ..Default::default()
     };
     let out = render(&job, &opts).unwrap();
-    let y =
-        |v: glam::Vec3A| luminance(Spectrum::new(v.x, v.y, v.z)) as f64 * LUMENS_PER_WATT as f64;
-    // the channels' errors are correlated (one path per sample): bound Y's by their weighted sum
-    let se = out.film().develop_stderr().get(0, 0);
-    let se_y = (0.2126 * se.x + 0.7152 * se.y + 0.0722 * se.z) as f64 * LUMENS_PER_WATT as f64;
-    (y(out.film().develop().get(0, 0)), se_y)
+    let k = LUMENS_PER_WATT as f64;
+    let (value, error) = (out.film().develop(), out.film().develop_stderr());
+    (k * luminance_f64(&value.data[..3]), k * luminance_f64(&error.data[..3]))
 }
 
 #[test]
@@ -108,11 +105,12 @@ fn meters_read_back_the_photometric_values_in_lux() {
 #[test]
 fn photometric_misuse_is_a_located_error() {
     let point = |params: &str| {
-        load(&scene(&format!(
-            "<emitter type=\"point\"><point name=\"position\" x=\"0\" y=\"0\" z=\"2\"/>\n{params}</emitter>"
-        )))
-        .err()
-        .unwrap_or_default()
+        common::load_error(
+            &scene(&format!(
+                "<emitter type=\"point\"><point name=\"position\" x=\"0\" y=\"0\" z=\"2\"/>\n{params}</emitter>"
+            )),
+            "units.xml",
+        )
     };
     let e =
         point(r#"<float name="luminous_intensity" value="100"/><rgb name="intensity" value="1"/>"#);
@@ -128,11 +126,12 @@ fn photometric_misuse_is_a_located_error() {
     // `color` belongs to the photometric parameters only
     let e = point(r#"<rgb name="intensity" value="1"/><rgb name="color" value="1, 0, 0"/>"#);
     assert!(e.contains("color"), "{e}");
-    let e = load(&scene(
-        r#"<shape type="disk"><emitter type="area"><float name="luminance" value="1"/>
+    let e = common::load_error(
+        &scene(
+            r#"<shape type="disk"><emitter type="area"><float name="luminance" value="1"/>
              <rgb name="radiance" value="1"/></emitter></shape>"#,
-    ))
-    .err()
-    .unwrap_or_default();
+        ),
+        "units.xml",
+    );
     assert!(e.contains("not both") && e.contains("cd/m²"), "{e}");
 }

@@ -6,6 +6,8 @@ use std::path::Path;
 use steradian::render::{render, GridReading, RenderOptions};
 use steradian::sensor::{SensorKind, WorkplaneUnit};
 
+mod common;
+
 /// A 4 × 3 work plane over [−2, 2] × [−1.5, 1.5] at z = 0.8 (normal +z) with `lights`.
 fn scene(lights: &str, mode: &str, depth: i32) -> String {
     format!(
@@ -99,12 +101,7 @@ fn sky_and_an_occluding_disk_read_their_configuration_factors() {
 
 #[test]
 fn bad_work_planes_are_located_errors() {
-    let load = |xml: &str| {
-        steradian_mitsuba::load_string(xml, Path::new("grid.xml"), Path::new("."), &[])
-            .err()
-            .map(|e| e.to_string())
-            .unwrap_or_default()
-    };
+    let load = |xml: &str| common::load_error(xml, "grid.xml");
     let e = load(&scene("", "corner", 1));
     assert!(
         e.contains("grid.xml:")

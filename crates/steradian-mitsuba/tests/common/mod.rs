@@ -94,6 +94,15 @@ pub fn image_mean_z(job: &Job, spp: u32, reference: &str, ref_spp: u32) -> f64 {
         .fold(0.0, f64::max)
 }
 
+/// The message of the error loading the scene text `xml` (called `file` in it, relative files
+/// beside the working directory); empty when it loads.
+pub fn load_error(xml: &str, file: &str) -> String {
+    steradian_mitsuba::load_string(xml, Path::new(file), Path::new("."), &[])
+        .err()
+        .map(|e| e.to_string())
+        .unwrap_or_default()
+}
+
 /// The error is at `file:line:col`, reads `file:line:col: error: message`, and its message
 /// contains every needle.
 #[track_caller]

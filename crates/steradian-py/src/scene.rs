@@ -330,9 +330,9 @@ impl Scene {
     }
 
     /// Reads a `workplane` sensor's grid: a dict with `values` and `stderr` (float64 arrays
-    /// of shape (ny, nx), row 0 the plan's top row), `unit` (`"lx"` or `"W/m^2"`), `spp`, and
-    /// `stats`: `avg`, `min`, `max`, `u0` (min/avg) and `min_max` (min/max), each a
-    /// `(value, stderr)` tuple, and `target_reached`. Same options as `measure` (a target
+    /// of shape (ny, nx), row 0 the plan's top row), `unit` (`"lx"`, `"W/m^2"`, or `"%"` for
+    /// a daylight factor), `spp`, and `stats`: `avg`, `min`, `max`, `u0` (min/avg) and
+    /// `min_max` (min/max), each a `(value, stderr)` tuple, and `target_reached`. Same options as `measure` (a target
     /// error applies to every cell).
     #[pyo3(
         signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None),

@@ -12,6 +12,10 @@
 //! - Analytic leaves list `(shape, prim)` pairs tested through [`Shape::intersect_prim`].
 //!
 
+use glam::Vec3;
+
+use crate::geometry::Aabb;
+
 /// Children per node.
 pub(super) const WIDTH: usize = 8;
 
@@ -38,6 +42,23 @@ impl Node8 {
         ],
         child: [EMPTY_CHILD; WIDTH],
     };
+
+    /// The box of child slot `lane`.
+    pub(super) fn child_bounds(&self, lane: usize) -> Aabb {
+        let b = &self.bounds;
+        Aabb::new(
+            Vec3::new(b[0][lane], b[1][lane], b[2][lane]),
+            Vec3::new(b[3][lane], b[4][lane], b[5][lane]),
+        )
+    }
+
+    /// Sets the box of child slot `lane`.
+    pub(super) fn set_child_bounds(&mut self, lane: usize, b: &Aabb) {
+        for axis in 0..3 {
+            self.bounds[axis][lane] = b.min[axis];
+            self.bounds[axis + 3][lane] = b.max[axis];
+        }
+    }
 }
 
 /// Four triangles in SoA layout (144 bytes).

@@ -4,7 +4,6 @@ use glam::{Vec2, Vec3};
 
 use super::layout::{leaf_range, ANALYTIC, EMPTY_CHILD, LEAF, WIDTH};
 use super::{Accel, Isa};
-use crate::geometry::Aabb;
 use crate::geometry::{Ray, Transform};
 use crate::sampling::Pcg32;
 use crate::shape::{cube, Cylinder, Disk, Mesh, Rectangle, Shape, Sphere};
@@ -200,10 +199,7 @@ fn layout_is_compact_and_complete() {
                     );
                     continue;
                 }
-                let b = Aabb::new(
-                    Vec3::new(n.bounds[0][lane], n.bounds[1][lane], n.bounds[2][lane]),
-                    Vec3::new(n.bounds[3][lane], n.bounds[4][lane], n.bounds[5][lane]),
-                );
+                let b = n.child_bounds(lane);
                 assert!(b.min.cmpge(parent.min).all() && b.max.cmple(parent.max).all());
                 todo.push((n.child[lane], b));
             }

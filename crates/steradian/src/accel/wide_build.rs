@@ -138,6 +138,11 @@ impl<'a> Cluster<'a> {
         Cluster { prims, offset, extent, depth, state }
     }
 
+    /// Whether the range is all triangles (leaves hold one kind).
+    fn is_triangles(&self) -> bool {
+        self.prims[0].is_triangle()
+    }
+
     fn area(&self) -> f32 {
         self.extent.bounds().surface_area()
     }
@@ -257,11 +262,7 @@ impl Chunk {
         self.nodes.push(Node8::EMPTY);
         let mut apart = Vec::new();
         for (lane, k) in kids.into_iter().enumerate() {
-            let b = k.extent.bounds();
-            for axis in 0..3 {
-                self.nodes[idx].bounds[axis][lane] = b.min[axis];
-                self.nodes[idx].bounds[axis + 3][lane] = b.max[axis];
-            }
+            self.nodes[idx].set_child_bounds(lane, &k.extent.bounds());
             let code = match k.state {
                 State::Inner(_) if parallel => {
                     apart.push((lane, k));
@@ -287,7 +288,7 @@ impl Chunk {
     /// Records a leaf; returns its code.
     fn leaf(&mut self, k: &Cluster) -> u32 {
         let range = LeafRange { start: k.offset as u32, count: k.prims.len() as u32 };
-        if k.extent_is_triangles() {
+        if k.is_triangles() {
             let packets = k.prims.len().div_ceil(TRI_BLOCK);
             let code = leaf_code(self.tri_packets, packets, false);
             self.tri_leaves.push(range);
@@ -344,12 +345,5 @@ impl Chunk {
             out.nodes[node_offset + link.node].child[link.lane] = root;
         }
         node_offset as u32
-    }
-}
-
-impl Cluster<'_> {
-    /// Whether the range is all triangles (leaves hold one kind).
-    fn extent_is_triangles(&self) -> bool {
-        self.prims[0].is_triangle()
     }
 }

@@ -72,7 +72,7 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
         ("bsdf", "hair"),
         ("bsdf", "polarizer"),
         ("integrator", "prb"),
-        ("integrator", "volpath"),
+        ("integrator", "prbvolpath"),
     ] {
         let e = err(&scene(&format!("<{tag} type=\"{ty}\"/>")));
         let want = format!("the Mitsuba 3 {tag} plugin '{ty}' is not supported by steradian");
@@ -111,10 +111,10 @@ fn unknown_sensor_type() {
 #[test]
 fn unknown_integrator_type() {
     check(
-        &err(&scene("<integrator type=\"volpath\"/>")),
+        &err(&scene("<integrator type=\"pathh\"/>")),
         2,
         1,
-        &["the Mitsuba 3 integrator plugin 'volpath' is not supported", "path"],
+        &["unknown integrator plugin type 'pathh'", "path", "volpath"],
     );
 }
 
@@ -534,9 +534,9 @@ fn two_integrators() {
 
 #[test]
 fn unsupported_object_at_scene_level() {
-    // (scene-level <texture>s are supported since the textures work: they are referenced by id)
-    let xml = full_scene("<medium type=\"homogeneous\"/>");
-    check(&err(&xml), 4, 1, &["<medium> objects are not supported at the scene level"]);
+    // (scene-level <texture>s and <medium>s are supported: they are referenced by id)
+    let xml = full_scene("<phase type=\"hg\"/>");
+    check(&err(&xml), 4, 1, &["<phase> objects are not supported at the scene level"]);
 }
 
 #[test]

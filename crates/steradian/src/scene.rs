@@ -12,11 +12,14 @@ use crate::bsdf::Bsdf;
 use crate::emitter::{Emitter, EmitterSample, LightSelection, Support};
 use crate::geometry::SurfacePoint;
 use crate::geometry::{Aabb, Ray, SurfaceInteraction, Transform, NO_INSTANCE};
+use crate::medium::Medium;
+use crate::sampling::PixelSampler;
 use crate::sensor::Sensor;
 use crate::shape::Shape;
+use crate::Spectrum;
 
-/// What a shape is made of and whether it glows.
-#[derive(Clone, Debug, PartialEq)]
+/// What a shape is made of, whether it glows, and the media it bounds.
+#[derive(Clone, Debug, Default, PartialEq)]
 pub struct ShapeBinding {
     /// Index into [`Scene::bsdfs`].
     pub bsdf: u32,
@@ -24,6 +27,19 @@ pub struct ShapeBinding {
     pub emitter: Option<u32>,
     /// The shape's `id` in the scene file (empty when it has none).
     pub id: String,
+    /// Index into [`Scene::media`] of the medium inside the shape (behind its geometric
+    /// normal), Mitsuba's `interior`.
+    pub interior: Option<u32>,
+    /// The medium outside (in front of the normal), Mitsuba's `exterior`.
+    pub exterior: Option<u32>,
+}
+
+impl ShapeBinding {
+    /// Whether crossing the shape changes the medium (it names an interior or an exterior).
+    #[inline]
+    fn is_medium_transition(&self) -> bool {
+        self.interior.is_some() || self.exterior.is_some()
+    }
 }
 
 /// A placed copy of a shape group ([`SceneDescription::groups`]): Mitsuba's `instance`.
@@ -47,6 +63,10 @@ pub struct SceneDescription {
     pub bsdfs: Vec<Bsdf>,
     pub emitters: Vec<Emitter>,
     pub sensors: Vec<Sensor>,
+    /// Participating media, referenced by the bindings' `interior` and `exterior`.
+    pub media: Vec<Medium>,
+    /// The medium the sensors sit in (Mitsuba's sensor `medium`).
+    pub camera_medium: Option<u32>,
     /// How next-event estimation chooses among the emitters (the integrator's
     /// `light_selection`): the scene tabulates the choice once.
     pub light_selection: LightSelection,
@@ -62,6 +82,13 @@ pub struct Scene {
     /// The light at infinity that escaping rays see (Mitsuba allows one).
     pub environment: Option<u32>,
     pub sensors: Vec<Sensor>,
+    /// Participating media (`crate::medium`).
+    pub media: Vec<Medium>,
+    /// The medium camera rays start in.
+    pub camera_medium: Option<u32>,
+    /// Whether some surface may let light through unscattered ([`Bsdf::may_pass_light`]):
+    /// without one, `volpath`'s shadow rays stop at the first surface.
+    null_surfaces: bool,
     /// The bindings of each group's members, by instance (a hit's `instance` indexes it).
     instance_bindings: Vec<Arc<[ShapeBinding]>>,
     accel: Accel,
@@ -87,6 +114,9 @@ enum LastVertexLights {
     Mis,
 }
 
+/// The most surfaces a shadow ray crosses in [`Scene::transmittance`].
+const MAX_NULL_CROSSINGS: usize = 256;
+
 /// The most emitters [`LastVertexLights::CheckEach`] checks at a vertex (one distance test
 /// each).
 const LAST_VERTEX_MAX_CHECKS: usize = 16;
@@ -107,9 +137,19 @@ impl Scene {
     /// Builds the acceleration structure and checks cross references.
     pub fn new(desc: SceneDescription) -> Result<Scene, String> {
         let (shapes, bindings): (Vec<Shape>, Vec<ShapeBinding>) = desc.shapes.into_iter().unzip();
+        let media = desc.media.len();
+        let bad_medium = |b: &ShapeBinding| {
+            [b.interior, b.exterior].into_iter().flatten().find(|&m| m as usize >= media)
+        };
+        if let Some(m) = desc.camera_medium.filter(|&m| m as usize >= media) {
+            return Err(format!("the sensors' medium is medium {m} of {media}"));
+        }
         for (i, b) in bindings.iter().enumerate() {
             if b.bsdf as usize >= desc.bsdfs.len() {
                 return Err(format!("shape {i} refers to BSDF {} of {}", b.bsdf, desc.bsdfs.len()));
+            }
+            if let Some(m) = bad_medium(b) {
+                return Err(format!("shape {i} refers to medium {m} of {media}"));
             }
             if let Some(e) = b.emitter {
                 match desc.emitters.get(e as usize) {
@@ -149,6 +189,9 @@ impl Scene {
                 if b.emitter.is_some() {
                     return Err(format!("member {i} of group {g} is an emitter"));
                 }
+                if let Some(m) = bad_medium(b) {
+                    return Err(format!("member {i} of group {g} refers to medium {m} of {media}"));
+                }
             }
             groups
                 .push((Arc::new(ShapeGroup::new(members)), Arc::<[ShapeBinding]>::from(bindings)));
@@ -174,7 +217,11 @@ impl Scene {
         }
         let (light_pmf, light_cdf) =
             desc.light_selection.distribution(&desc.emitters, &shapes, accel.bounds());
+        let null_surfaces = desc.bsdfs.iter().any(Bsdf::may_pass_light);
         Ok(Scene {
+            media: desc.media,
+            camera_medium: desc.camera_medium,
+            null_surfaces,
             last_vertex: LastVertexLights::of(&desc.emitters),
             light_pmf,
             light_cdf,
@@ -356,6 +403,84 @@ impl Scene {
     pub fn environment_radiance_and_pdf(&self, env: u32, d: Vec3) -> (crate::Spectrum, f32) {
         let (le, pdf) = self.emitters[env as usize].radiance_and_pdf_from(d);
         (le, pdf * self.emitter_selection_pdf(env))
+    }
+
+    /// The medium light travelling in world direction `d` is in after crossing the surface
+    /// `si`, having been in `current`: where the shape bounds media, its `exterior` on the
+    /// side of its geometric normal and its `interior` behind it (Mitsuba's `target_medium`);
+    /// elsewhere `current`.
+    #[inline]
+    pub fn medium_after(
+        &self,
+        si: &SurfaceInteraction,
+        d: Vec3,
+        current: Option<u32>,
+    ) -> Option<u32> {
+        let b = self.binding(si);
+        if !b.is_medium_transition() {
+            return current;
+        }
+        if si.n.dot(d) > 0.0 {
+            b.exterior
+        } else {
+            b.interior
+        }
+    }
+
+    /// The transmittance from `p` (on a surface with geometric normal `n`; zero for a point
+    /// in a medium) to the point at distance `dist` along unit direction `wi` (infinite:
+    /// out of the scene), starting in `medium`: the product of each medium's transmittance
+    /// over its stretch and of the null transmission ([`Bsdf::null_transmission`]) of each
+    /// surface crossed, where media change as [`Scene::medium_after`] says. Zero where an
+    /// opaque surface lies between.
+    pub fn transmittance(
+        &self,
+        p: Vec3,
+        n: Vec3,
+        wi: Vec3,
+        dist: f32,
+        mut medium: Option<u32>,
+        sampler: &mut PixelSampler,
+    ) -> Spectrum {
+        let shorten = 1.0 - crate::geometry::interaction::SHADOW_EPSILON;
+        let target = p + wi * dist;
+        let mut origin = crate::geometry::offset_ray_origin(p, n, wi);
+        let mut tr = Spectrum::ONE;
+        for _ in 0..MAX_NULL_CROSSINGS {
+            let ray = if dist.is_finite() {
+                let d = target - origin;
+                let len = d.length();
+                Ray::new(origin, d / len, len * shorten)
+            } else {
+                Ray::infinite(origin, wi)
+            };
+            if !self.null_surfaces {
+                // every surface is opaque: one occlusion test, then the medium's stretch
+                if self.occluded(&ray) {
+                    return Spectrum::ZERO;
+                }
+                if let Some(m) = medium {
+                    tr *= self.media[m as usize].transmittance(&ray, ray.t_max, sampler);
+                }
+                return tr;
+            }
+            let hit = self.intersect(&ray);
+            if let Some(m) = medium {
+                let t = hit.as_ref().map_or(ray.t_max, |si| si.t);
+                tr *= self.media[m as usize].transmittance(&ray, t, sampler);
+            }
+            let Some(si) = hit else { return tr };
+            let sp = crate::bsdf::ShadingPoint::new(&si);
+            tr *= self.bsdf(&si).null_transmission(&sp, si.to_local(si.wo));
+            if tr == Spectrum::ZERO {
+                return tr;
+            }
+            medium = self.medium_after(&si, ray.d, medium);
+            origin = crate::geometry::offset_ray_origin(si.p, si.n, ray.d);
+        }
+        // a shadow ray still crossing surfaces after this many is caught between coincident
+        // ones: counted as blocked rather than traced for ever
+        Spectrum::ZERO
     }
 
     /// Index of the sensor with the given `id`.

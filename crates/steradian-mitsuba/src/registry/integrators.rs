@@ -1,4 +1,5 @@
-//! Integrator plugins: `path`, `direct`, `depth`, `moment`, `aov`, `ptracer`.
+//! Integrator plugins: `path`, `volpath`, `volpathmis`, `direct`, `depth`, `moment`, `aov`,
+//! `ptracer`.
 
 use steradian::emitter::LightSelection;
 use steradian::integrator::{
@@ -7,7 +8,7 @@ use steradian::integrator::{
 };
 use steradian::integrator::{
     AovField, AovIntegrator, DepthIntegrator, DirectIntegrator, Integrator, MomentIntegrator,
-    ParticleTracer, PathTracer,
+    ParticleTracer, PathTracer, VolPathTracer,
 };
 
 use super::{at_param, lookup, Plugins};
@@ -52,6 +53,8 @@ type BuildIntegrator = fn(&PluginNode) -> Result<Integrator, LoadError>;
 /// Every integrator plugin, by Mitsuba `type`.
 pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> = &[
     ("path", path),
+    ("volpath", volpath),
+    ("volpathmis", volpath),
     ("direct", direct),
     ("depth", depth),
     ("moment", moment),
@@ -117,6 +120,23 @@ fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
         light_selection: light_selection(node)?,
         branches,
         ..PathTracer::default()
+    }))
+}
+
+/// `volpath` and `volpathmis` (one estimator, `steradian::integrator::VolPathTracer`):
+/// `max_depth`, `rr_depth`, `hide_emitters`, and steradian's `light_selection`.
+fn volpath(node: &PluginNode) -> Result<Integrator, LoadError> {
+    let p = &node.props;
+    let max_depth = match p.get_int("max_depth")? {
+        None => DEFAULT_MAX_DEPTH,
+        Some(v) => parse_max_depth(v).map_err(at_param(node))?,
+    };
+    let rr_depth = count(node, "rr_depth", DEFAULT_RR_DEPTH as i64)?;
+    Ok(Integrator::VolPath(VolPathTracer {
+        max_depth,
+        rr_depth,
+        emitters: visibility(p.get_bool("hide_emitters")?),
+        light_selection: light_selection(node)?,
     }))
 }
 

@@ -13,6 +13,7 @@ mod emitters;
 mod field_of_view;
 mod geometry;
 mod integrators;
+mod media;
 pub(crate) mod sensors;
 mod shapes;
 mod textures;
@@ -39,6 +40,10 @@ pub(crate) struct Builder {
     bsdf_cache: HashMap<*const PluginNode, u32>,
     /// Shape groups already built, by node identity: index into the scene's groups.
     group_cache: HashMap<*const PluginNode, u32>,
+    /// Media already built, by node identity: index into the scene's media.
+    medium_cache: HashMap<*const PluginNode, u32>,
+    /// The first sensor's medium and where that sensor is: every sensor must share it.
+    sensor_medium: Option<(crate::SourcePos, Option<u32>)>,
     default_bsdf: Option<u32>,
     black_bsdf: Option<u32>,
     /// Directory for relative paths when the scene did not come from a file.
@@ -115,6 +120,86 @@ impl Builder {
         Ok(i)
     }
 
+    /// The medium of `node`, built once (shared through `<ref>`): its index in the scene.
+    pub(crate) fn medium_index(&mut self, node: &Arc<PluginNode>) -> Result<u32, LoadError> {
+        let key = Arc::as_ptr(node);
+        if let Some(&i) = self.medium_cache.get(&key) {
+            return Ok(i);
+        }
+        let medium = media::build(self, node)?;
+        self.desc.media.push(medium);
+        let i = (self.desc.media.len() - 1) as u32;
+        self.medium_cache.insert(key, i);
+        Ok(i)
+    }
+
+    /// The media a shape names in its slots (`interior`, `exterior`): `<medium name="...">`
+    /// nested or `<ref name="..." id="..."/>`. Any other `<medium>` child is an error at it
+    /// (Mitsuba ignores it silently).
+    pub(crate) fn media_of(
+        &mut self,
+        node: &PluginNode,
+        slots: &[&str],
+    ) -> Result<Vec<Option<u32>>, LoadError> {
+        let children = node.children_of(ObjectTag::Medium);
+        let mut found = vec![None; slots.len()];
+        for c in children {
+            let slot = c.name.as_deref().and_then(|n| slots.iter().position(|s| *s == n));
+            let Some(slot) = slot else {
+                let names: Vec<String> = slots.iter().map(|s| format!("'{s}'")).collect();
+                return Err(LoadError::at(
+                    c.pos(),
+                    format!(
+                        "{}: a medium in {} must be named {} (name=\"...\")",
+                        c.node.desc(),
+                        node.desc(),
+                        names.join(" or ")
+                    ),
+                ));
+            };
+            if found[slot].is_some() {
+                return Err(LoadError::at(
+                    c.pos(),
+                    format!("{} names its '{}' medium twice", node.desc(), slots[slot]),
+                ));
+            }
+            found[slot] = Some(self.medium_index(&c.node)?);
+        }
+        Ok(found)
+    }
+
+    /// Reads a sensor's medium (before the sensor is built) into the scene's camera medium:
+    /// its one `<medium>` child, whatever its name, as Mitsuba takes it. steradian starts every
+    /// sensor's rays in one medium, so sensors in different media are an error.
+    pub(crate) fn sensor_medium(&mut self, node: &PluginNode) -> Result<(), LoadError> {
+        let children = node.children_of(ObjectTag::Medium);
+        if let Some(second) = children.get(1) {
+            return Err(LoadError::at(
+                second.pos(),
+                format!("{} has more than one medium", node.desc()),
+            ));
+        }
+        let medium = match children.first() {
+            Some(c) => Some(self.medium_index(&c.node)?),
+            None => None,
+        };
+        match &self.sensor_medium {
+            None => {
+                self.sensor_medium = Some((node.pos.clone(), medium));
+                self.desc.camera_medium = medium;
+                Ok(())
+            }
+            Some((_, first)) if *first == medium => Ok(()),
+            Some((pos, _)) => Err(LoadError::at(
+                &node.pos,
+                format!(
+                    "{}: its medium differs from that of the sensor at {pos}; steradian starts all sensors' rays in one medium",
+                    node.desc()
+                ),
+            )),
+        }
+    }
+
     /// Mitsuba's BSDF for a shape without one: `diffuse` 0.5, or black for emitters.
     pub(crate) fn implicit_bsdf(&mut self, emitting: bool) -> u32 {
         if emitting {
@@ -148,18 +233,10 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("shape", &["bsplinecurve", "linearcurve", "sdfgrid", "ellipsoids", "ellipsoidsmesh", "merge"]),
     ("film", &["specfilm"]),
     ("texture", &["volume"]),
+    ("phase", &["sggx", "tabphase"]),
     (
         "integrator",
-        &[
-            "stokes",
-            "volpath",
-            "volpathmis",
-            "prb",
-            "prb_basic",
-            "prbvolpath",
-            "direct_projective",
-            "prb_projective",
-        ],
+        &["stokes", "prb", "prb_basic", "prbvolpath", "direct_projective", "prb_projective"],
     ),
 ];
 
@@ -268,6 +345,8 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
         desc: SceneDescription::default(),
         bsdf_cache: HashMap::new(),
         group_cache: HashMap::new(),
+        medium_cache: HashMap::new(),
+        sensor_medium: None,
         default_bsdf: None,
         black_bsdf: None,
         base_dir: base_dir.to_path_buf(),
@@ -305,6 +384,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
                 b.desc.emitters.push(e);
             }
             ObjectTag::Sensor => {
+                b.sensor_medium(node)?;
                 let s = sensors::build(&b, node, None)?;
                 b.desc.sensors.push(s);
             }
@@ -314,6 +394,9 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
                 let built = textures::build(&b, node);
                 b.mesh_attributes.replace(AttributeSource::None);
                 built?;
+            }
+            ObjectTag::Medium => {
+                b.medium_index(node)?;
             }
             ObjectTag::Integrator => {
                 if let Some(first) = integrator_pos.replace(node.pos.clone()) {
@@ -383,6 +466,7 @@ mod tests {
             ),
             ("samplers", names(sensors::SAMPLERS)),
             ("integrators", names(integrators::INTEGRATORS)),
+            ("media", [names(media::MEDIA), names(media::VOLUMES), names(media::PHASES)].concat()),
         ];
         for (family, plugins) in families {
             let row = readme

@@ -186,10 +186,15 @@ fn build_shape_node(
     };
     b.mesh_attributes.replace(AttributeSource::None);
     let bsdf = bsdf?;
+    let [interior, exterior] =
+        <[Option<u32>; 2]>::try_from(b.media_of(node, &["interior", "exterior"])?)
+            .expect("two slots");
     for c in node.children_of(ObjectTag::Sensor) {
+        b.sensor_medium(&c.node)?;
         let sensor = super::sensors::build(b, &c.node, Some(shape_index))?;
         b.desc.sensors.push(sensor);
     }
     node.check_all_used()?;
-    Ok((shape, ShapeBinding { bsdf, emitter, id: node.id.clone().unwrap_or_default() }))
+    let id = node.id.clone().unwrap_or_default();
+    Ok((shape, ShapeBinding { bsdf, emitter, id, interior, exterior }))
 }

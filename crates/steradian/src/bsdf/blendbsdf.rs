@@ -66,6 +66,13 @@ impl BlendBsdf {
         p
     }
 
+    /// The mix of the two BSDFs' straight-through fractions.
+    #[inline]
+    pub fn null_transmission(&self, sp: &ShadingPoint, wo: Vec3) -> Spectrum {
+        let w = self.w(sp);
+        self.bsdf0.null_transmission(sp, wo) * (1.0 - w) + self.bsdf1.null_transmission(sp, wo) * w
+    }
+
     #[inline]
     pub fn sample(&self, sp: &ShadingPoint, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
         let w = self.w(sp);
@@ -76,7 +83,7 @@ impl BlendBsdf {
             (self.bsdf0.sample(sp, wo, ((u1 - w) / (1.0 - w)).clamp(0.0, BELOW_ONE), u2)?, 1.0 - w)
         };
         match s.lobe {
-            Lobe::Delta => s.pdf *= chance,
+            Lobe::Delta | Lobe::Null => s.pdf *= chance,
             Lobe::Smooth => {
                 let pdf = self.pdf(sp, wo, s.wi);
                 if !positive(pdf) {

@@ -79,10 +79,17 @@ impl Mask {
                 wi: -wo,
                 pdf: 1.0 - a,
                 weight: Spectrum::ONE,
-                lobe: Lobe::Delta,
+                lobe: Lobe::Null,
                 eta: 1.0,
             })
         }
+    }
+
+    /// The fraction of light passing straight through, 1 − opacity (Mitsuba's
+    /// `eval_null_transmission`).
+    #[inline]
+    pub fn null_transmission(&self, sp: &ShadingPoint) -> Spectrum {
+        Spectrum::splat(1.0 - self.opacity(sp))
     }
 
     pub fn has_smooth_lobe(&self) -> bool {
@@ -144,7 +151,7 @@ mod tests {
         let mut null = 0usize;
         for _ in 0..n {
             let smp = b.sample(&s, wo, rng.next_f32(), Vec2::new(rng.next_f32(), rng.next_f32()));
-            if let Some(x) = smp.filter(|x| x.lobe == Lobe::Delta) {
+            if let Some(x) = smp.filter(|x| x.lobe == Lobe::Null) {
                 assert_eq!((x.wi, x.weight, x.pdf, x.eta), (-wo, Spectrum::ONE, 0.7, 1.0));
                 null += 1;
             }

@@ -63,6 +63,21 @@ pub enum Lobe {
     Smooth,
     /// A Dirac delta (mirror, smooth glass): only reachable by sampling.
     Delta,
+    /// Straight through, unchanged (Mitsuba's `BSDFFlags::Null`: the `null` BSDF, a `mask`'s
+    /// transparent part): a delta that `volpath` does not count as a scattering event.
+    Null,
+}
+
+impl Lobe {
+    /// Whether the direction came from a Dirac delta (a mirror, smooth glass, a null
+    /// pass-through), which only sampling can reach: MIS gives it full weight.
+    #[inline]
+    pub fn is_delta(self) -> bool {
+        match self {
+            Lobe::Smooth => false,
+            Lobe::Delta | Lobe::Null => true,
+        }
+    }
 }
 
 /// A direction drawn from a BSDF.
@@ -207,6 +222,31 @@ impl Bsdf {
         match self {
             Bsdf::Diffuse(_) => true,
             Bsdf::TwoSided(b) => b.front.is_lambertian() && b.back.is_lambertian(),
+            _ => false,
+        }
+    }
+
+    /// The fraction of light that passes the surface straight through, unscattered (Mitsuba's
+    /// `eval_null_transmission`): 1 − opacity for `mask` (and so 1 for `null`), the mix for
+    /// `blendbsdf`, the facing side's for `twosided`, 0 for every other BSDF. `volpath`'s
+    /// shadow rays cross surfaces with this weight; `path`'s stop at every surface.
+    #[inline]
+    pub fn null_transmission(&self, sp: &ShadingPoint, wo: Vec3) -> Spectrum {
+        match self {
+            Bsdf::Mask(b) => b.null_transmission(sp),
+            Bsdf::BlendBsdf(b) => b.null_transmission(sp, wo),
+            Bsdf::TwoSided(b) => b.null_transmission(sp, wo),
+            _ => Spectrum::ZERO,
+        }
+    }
+
+    /// Whether some light may pass the surface unscattered ([`Bsdf::null_transmission`] can
+    /// be positive).
+    pub fn may_pass_light(&self) -> bool {
+        match self {
+            Bsdf::Mask(_) => true,
+            Bsdf::BlendBsdf(b) => b.bsdf0.may_pass_light() || b.bsdf1.may_pass_light(),
+            Bsdf::TwoSided(b) => b.front.may_pass_light() || b.back.may_pass_light(),
             _ => false,
         }
     }

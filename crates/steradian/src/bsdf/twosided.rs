@@ -39,6 +39,16 @@ impl TwoSided {
         }
     }
 
+    /// The straight-through fraction of the side `wo` lies on.
+    #[inline]
+    pub fn null_transmission(&self, sp: &ShadingPoint, wo: Vec3) -> Spectrum {
+        if wo.z >= 0.0 {
+            self.front.null_transmission(sp, wo)
+        } else {
+            self.back.null_transmission(sp, flip(wo))
+        }
+    }
+
     #[inline]
     pub fn pdf(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
         if wo.z >= 0.0 {

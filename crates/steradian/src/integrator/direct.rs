@@ -113,7 +113,7 @@ impl DirectIntegrator {
                 continue;
             }
             let w = match bs.lobe {
-                Lobe::Delta => 1.0,
+                Lobe::Delta | Lobe::Null => 1.0,
                 Lobe::Smooth if ne > 0.0 && bsdf.has_smooth_lobe() => power_heuristic(
                     bs.pdf * nb,
                     scene.pdf_emitter_direction(e, si.p, d, &light) * ne,

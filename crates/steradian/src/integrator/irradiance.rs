@@ -13,13 +13,16 @@
 //! - Reflected light along the cosine-weighted direction comes from the scene's integrator
 //!   with the first hit's own emission hidden, so `max_depth` keeps Mitsuba's meaning (1 =
 //!   emitters seen directly from the meter, 2 = one bounce, ...).
+//! - Under `volpath` the meter may sit in a medium (the sensors') and light reach it through
+//!   media and null surfaces: one light sample weighted by its transmittance, and π·L along the
+//!   cosine-weighted direction traced by `volpath`, combined by MIS.
 
 use std::f32::consts::PI;
 
 use glam::Vec3;
 
 use super::mis::power_heuristic;
-use super::{EmitterVisibility, Integrator};
+use super::{EmitterVisibility, Integrator, PathTracer, VolPathTracer};
 use crate::emitter::{Emitter, Support};
 use crate::geometry::{offset_ray_origin, Frame, Ray};
 use crate::sampling::{warp, PixelSampler};
@@ -42,6 +45,8 @@ fn reflected_only(integrator: &Integrator) -> Option<Integrator> {
             d.emitters = EmitterVisibility::Hidden;
             Some(Integrator::Direct(d))
         }
+        // estimated whole by `estimate_irradiance` (light sampled only along the path)
+        Integrator::VolPath(_) => None,
         // refused by the render plan (Integrator::estimates_light, particle tracing)
         Integrator::Depth(_) | Integrator::ParticleTracer(_) => None,
         Integrator::Moment(super::MomentIntegrator { nested })
@@ -49,6 +54,42 @@ fn reflected_only(integrator: &Integrator) -> Option<Integrator> {
             nested.first().and_then(|(_, i)| reflected_only(i))
         }
     }
+}
+
+/// The irradiance under `volpath`: the meter may sit in a medium (the sensors'), and light
+/// reach it through media and null surfaces. One light sample (the scene's light choice),
+/// weighted by the transmittance to it, and one cosine-weighted direction traced by `volpath`,
+/// combined by MIS with the power heuristic.
+fn volpath_irradiance(
+    scene: &Scene,
+    v: &VolPathTracer,
+    p: Vec3,
+    n: Vec3,
+    sampler: &mut PixelSampler,
+) -> Spectrum {
+    let cos_pdf = |wi: Vec3| n.dot(wi).max(0.0) / PI;
+    let medium = scene.camera_medium;
+    let mut h = Spectrum::ZERO;
+    if let Some(es) = scene.sample_emitter_direction(p, sampler.next_2d()) {
+        let cos = n.dot(es.wi);
+        if cos > 0.0 {
+            let tr = scene.transmittance(p, n, es.wi, es.dist, medium, sampler);
+            let w = match es.support {
+                Support::Delta => 1.0,
+                Support::Extended => power_heuristic(es.pdf, cos_pdf(es.wi)),
+            };
+            h += es.weight * tr * (cos * w);
+        }
+    }
+    let local = warp::square_to_cosine_hemisphere(sampler.next_2d());
+    if local.z <= 0.0 {
+        return h;
+    }
+    let wi = Frame::from_normal(n).to_world(local).normalize();
+    let ray = Ray::infinite(offset_ray_origin(p, n, wi), wi);
+    let last = super::volpath::LastScatter::Sampled { p, pdf: cos_pdf(wi) };
+    let visible = VolPathTracer { emitters: EmitterVisibility::Visible, ..v.clone() };
+    h + visible.li_from(scene, &ray, medium, last, sampler) * PI
 }
 
 /// One-sample estimate of the irradiance (W/m², per channel) at `p` on the side of the unit
@@ -60,10 +101,11 @@ pub fn estimate_irradiance(
     n: Vec3,
     sampler: &mut PixelSampler,
 ) -> Spectrum {
-    if let Integrator::Path(pt) = integrator {
-        if pt.max_depth == Some(0) {
-            return Spectrum::ZERO;
-        }
+    match integrator {
+        Integrator::Path(PathTracer { max_depth: Some(0), .. })
+        | Integrator::VolPath(VolPathTracer { max_depth: Some(0), .. }) => return Spectrum::ZERO,
+        Integrator::VolPath(v) => return volpath_irradiance(scene, v, p, n, sampler),
+        _ => {}
     }
     let mut h = Spectrum::ZERO;
     let cos_pdf = |wi: Vec3| n.dot(wi).max(0.0) / PI;

@@ -11,6 +11,7 @@ mod mis;
 mod moment;
 mod path;
 mod ptracer;
+mod volpath;
 
 pub use aov::{AovField, AovIntegrator};
 pub use branching::{pilot, Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
@@ -24,6 +25,7 @@ pub use path::{
     MAX_BRANCHES,
 };
 pub use ptracer::ParticleTracer;
+pub use volpath::VolPathTracer;
 
 use crate::emitter::LightSelection;
 use crate::geometry::Ray;
@@ -35,6 +37,8 @@ use crate::Spectrum;
 #[derive(Clone, Debug, PartialEq)]
 pub enum Integrator {
     Path(PathTracer),
+    /// `volpath` and `volpathmis`: path tracing through participating media.
+    VolPath(VolPathTracer),
     Direct(DirectIntegrator),
     Depth(DepthIntegrator),
     Moment(MomentIntegrator),
@@ -48,6 +52,7 @@ impl Integrator {
     pub fn light_selection(&self) -> LightSelection {
         match self {
             Integrator::Path(p) => p.light_selection,
+            Integrator::VolPath(p) => p.light_selection,
             Integrator::Direct(d) => d.light_selection,
             Integrator::Depth(_) | Integrator::ParticleTracer(_) => LightSelection::default(),
             Integrator::Moment(MomentIntegrator { nested })
@@ -63,6 +68,7 @@ impl Integrator {
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
         match self {
             Integrator::Path(i) => i.li(scene, ray, sampler),
+            Integrator::VolPath(i) => i.li(scene, ray, sampler),
             Integrator::Direct(i) => i.li(scene, ray, sampler),
             Integrator::Depth(i) => i.li(scene, ray),
             // camera rays carry nothing in particle tracing (the render plan never asks)

@@ -322,7 +322,7 @@ impl PathTracer {
             if let (Some(env), true) = (scene.environment, show_emitters) {
                 let (le, light_pdf) = scene.environment_radiance_and_pdf(env, st.ray.d);
                 let w = match st.prev_lobe {
-                    Lobe::Delta => 1.0,
+                    Lobe::Delta | Lobe::Null => 1.0,
                     Lobe::Smooth => power_heuristic(st.prev_pdf, light_pdf),
                 };
                 *result += st.beta * le * w;
@@ -334,7 +334,7 @@ impl PathTracer {
             let le = emitter.radiance(si.wo, si.n, si.uv);
             if le != Spectrum::ZERO {
                 let w = match st.prev_lobe {
-                    Lobe::Delta => 1.0,
+                    Lobe::Delta | Lobe::Null => 1.0,
                     Lobe::Smooth => power_heuristic(
                         st.prev_pdf,
                         scene.pdf_emitter_direction(e, st.prev_p, st.ray.d, &si.surface_point()),

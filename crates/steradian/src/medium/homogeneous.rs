@@ -14,6 +14,7 @@
 //! distance, for the spectral MIS of `volpathmis`, and [`Homogeneous::transmittance`] the
 //! probability of flying past d.
 
+use super::{FlightWeight, FreeFlight};
 use crate::param::ParamError;
 use crate::phase::PhaseFunction;
 use crate::Spectrum;
@@ -77,13 +78,61 @@ impl Homogeneous {
         (Spectrum::ONE - self.albedo) * self.sigma_t
     }
 
-    /// T(d) = exp(−σ_t d), the fraction of light that crosses distance `d` (m).
+    /// T(d) = exp(−σ_t d), the fraction of light that crosses distance `d` (m; infinite: 0
+    /// where σ_t > 0, 1 where the channel is clear).
+    #[inline]
     pub fn transmittance(&self, d: f32) -> Spectrum {
-        Spectrum::from_array((-self.sigma_t * d).to_array().map(f32::exp))
+        Spectrum::from_array(self.sigma_t.to_array().map(|s| {
+            if s > 0.0 {
+                (-s * d).exp()
+            } else {
+                1.0
+            }
+        }))
     }
 
+    /// Whether σ_t differs between channels (Mitsuba's `has_spectral_extinction`, decided by
+    /// the values): a grey medium needs no spectral MIS.
+    #[inline]
+    pub fn is_chromatic(&self) -> bool {
+        self.sigma_t.min_element() != self.sigma_t.max_element()
+    }
+
+    /// A free flight along a ray whose surface lies at `t_max` (m), its distance drawn in
+    /// `channel` by `u_t` (`medium/mod.rs`). The densities are compared in logarithms,
+    /// ln p_j = ln σ_t,j − σ_t,j t, so that no ratio overflows over long flights.
+    #[inline]
+    pub fn sample_free_flight(&self, t_max: f32, channel: usize, u_t: f32) -> FreeFlight {
+        let chromatic = self.is_chromatic();
+        let t = self.sample_distance(u_t, channel);
+        if t < t_max {
+            if !chromatic {
+                return FreeFlight::Scatter {
+                    t,
+                    weight: FlightWeight { f: self.albedo, pdf: Spectrum::ONE },
+                };
+            }
+            let log_pdf = self.sigma_t.to_array().map(|s| {
+                if s > 0.0 {
+                    s.ln() - s * t
+                } else {
+                    f32::NEG_INFINITY
+                }
+            });
+            let pdf = relative_to_largest(log_pdf);
+            FreeFlight::Scatter { t, weight: FlightWeight { f: self.albedo * pdf, pdf } }
+        } else {
+            if !chromatic {
+                return FreeFlight::Pass { weight: FlightWeight::ONE };
+            }
+            let log_pdf = self.sigma_t.to_array().map(|s| if s > 0.0 { -s * t_max } else { 0.0 });
+            let pdf = relative_to_largest(log_pdf);
+            FreeFlight::Pass { weight: FlightWeight { f: pdf, pdf } }
+        }
+    }
     /// A free-flight distance drawn in `channel` (0, 1, 2) from ξ ∈ [0, 1): density
     /// σ_t,c exp(−σ_t,c t); infinite where σ_t,c = 0 (the light flies on).
+    #[inline]
     pub fn sample_distance(&self, xi: f32, channel: usize) -> f32 {
         let s = self.sigma_t[channel];
         if s > 0.0 {
@@ -97,6 +146,13 @@ impl Homogeneous {
     pub fn free_flight_pdf(&self, t: f32) -> Spectrum {
         self.sigma_t * self.transmittance(t)
     }
+}
+
+/// exp(ln p_j − max ln p): densities over the largest (which is finite: the sampled channel's).
+#[inline]
+fn relative_to_largest(log_pdf: [f32; 3]) -> Spectrum {
+    let top = log_pdf.into_iter().fold(f32::NEG_INFINITY, f32::max);
+    Spectrum::from_array(log_pdf.map(|l| (l - top).exp()))
 }
 
 #[cfg(test)]

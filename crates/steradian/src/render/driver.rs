@@ -89,7 +89,8 @@ fn resolve_branches(
 fn branch_count(integrator: &Integrator) -> u32 {
     match integrator {
         Integrator::Path(p) => p.branches.count(),
-        Integrator::Direct(_)
+        Integrator::VolPath(_)
+        | Integrator::Direct(_)
         | Integrator::Depth(_)
         | Integrator::Moment(_)
         | Integrator::Aov(_)

@@ -6,7 +6,7 @@
 use glam::{Vec2, Vec3};
 
 use super::chi2::{chi2_test, CapGrid};
-use crate::bsdf::{Bsdf, Lobe, MicrofacetDistribution, MicrofacetKind, ShadingPoint};
+use crate::bsdf::{Bsdf, MicrofacetDistribution, MicrofacetKind, ShadingPoint};
 use crate::sampling::Pcg32;
 
 /// The shading point the checks evaluate BSDFs at (a flat surface at uv (0.3, 0.6)).
@@ -106,7 +106,7 @@ fn chi2_pvalue_impl(
         let u2 = Vec2::new(rng.next_f32(), rng.next_f32());
         if let Some(s) = bsdf.sample(&sp, wo, u1, u2) {
             assert_unit(s.wi);
-            if s.lobe == Lobe::Delta {
+            if s.lobe.is_delta() {
                 delta += 1;
                 continue;
             }
@@ -144,7 +144,7 @@ pub fn check_sample_consistency(bsdf: &Bsdf, wo: Vec3, seed: u64) {
     for _ in 0..2000 {
         let u2 = Vec2::new(rng.next_f32(), rng.next_f32());
         let Some(s) = bsdf.sample(&sp, wo, rng.next_f32(), u2) else { continue };
-        if s.lobe == Lobe::Delta {
+        if s.lobe.is_delta() {
             continue;
         }
         let pdf = bsdf.pdf(&sp, wo, s.wi);

@@ -37,7 +37,8 @@ pub fn grid_mesh(n: u32, mut position: impl FnMut(u32, u32) -> Vec3) -> (Vec<Vec
 /// inside sees the radiance [`furnace_radiance`].
 pub fn furnace(le: Spectrum, rho: Spectrum, tracer: PathTracer) -> Job {
     let sphere = Shape::Sphere(Sphere::new(Vec3::ZERO, 1.0, &Transform::IDENTITY, true));
-    let binding = ShapeBinding { bsdf: 0, emitter: Some(0), id: "furnace".into() };
+    let binding =
+        ShapeBinding { bsdf: 0, emitter: Some(0), id: "furnace".into(), ..Default::default() };
     let scene = Scene::new(SceneDescription {
         shapes: vec![(sphere, binding)],
         bsdfs: vec![Bsdf::Diffuse(Diffuse::new(Texture::Constant(rho)))],
@@ -79,7 +80,7 @@ pub fn lit_plane(
 ) -> Job {
     let to_world = Transform::scale(Vec3::new(half, half, 1.0)).expect("a positive scale");
     let plane = Shape::Rectangle(Rectangle::new(&to_world, false));
-    let binding = ShapeBinding { bsdf: 0, emitter: None, id: "plane".into() };
+    let binding = ShapeBinding { bsdf: 0, emitter: None, id: "plane".into(), ..Default::default() };
     let scene = Scene::new(SceneDescription {
         shapes: vec![(plane, binding)],
         bsdfs: vec![Bsdf::Diffuse(Diffuse::new(Texture::Constant(rho)))],

@@ -3,9 +3,10 @@
 //! `scripts/mitsuba_reference.py`): a homogeneous sphere behind a null boundary, lights and
 //! camera inside a fog, a glass sphere holding a medium, a rough glass cube under a spot light,
 //! a chromatic medium under `volpathmis`, a `gridvolume` cloud. Mutated scenes fail the same
-//! rule. Closed forms: Beer–Lambert transmittance through a slab and a sphere and a point
-//! source's irradiance through an absorbing slab, within 3 standard errors; a white furnace
-//! inside a non-absorbing medium returns the emitted radiance. Bad media are located errors.
+//! rule. Closed forms: Beer–Lambert transmittance through a slab and a sphere, a point
+//! source's irradiance through an absorbing slab, single scattering from a half-space under a
+//! collimated beam, within 3 standard errors; a white furnace inside a non-absorbing medium
+//! returns the emitted radiance. Bad media are located errors.
 
 mod common;
 
@@ -241,6 +242,52 @@ fn white_furnace_inside_a_scattering_medium() {
     assert_within_3se(v, se, le.map(|l| pi * l), "irradiance in the furnace");
 }
 
+/// Single scattering in a homogeneous half-space under a collimated beam (`max_depth` 2: the
+/// camera ray's one scattering event and its light sample): L₁ = α p E μ₀/(μ₀ + μ), p the
+/// Henyey–Greenstein value at the angle between beam and view, within 3 standard errors.
+#[test]
+fn single_scattering_from_a_half_space() {
+    let (theta0, theta) = (30f64.to_radians(), 50f64.to_radians());
+    // the beam travels down towards +x; the meter, up on the +x side, looks down towards −x
+    let beam = glam::DVec3::new(theta0.sin(), 0.0, -theta0.cos());
+    let view = glam::DVec3::new(-theta.sin(), 0.0, -theta.cos());
+    let g = 0.5;
+    // scattering angle between the beam's travel and the light's way out (−view)
+    let cos_scatter = beam.dot(-view);
+    let hg = (1.0 - g * g)
+        / (4.0 * std::f64::consts::PI * (1.0 + g * g - 2.0 * g * cos_scatter).powf(1.5));
+    let origin = -view * 3.0;
+    let xml = format!(
+        r#"<scene version="3.0.0">
+  <integrator type="volpath"><integer name="max_depth" value="2"/></integrator>
+  <emitter type="directional">
+    <vector name="direction" x="{}" y="0" z="{}"/>
+    <rgb name="irradiance" value="2, 3, 4"/>
+  </emitter>
+  <sensor type="radiancemeter" id="meter">
+    <point name="origin" x="{}" y="0" z="{}"/><vector name="direction" x="{}" y="0" z="{}"/>
+    {METER_FILM}
+  </sensor>
+  <shape type="cube">
+    <transform name="to_world"><scale x="500" y="500" z="50"/><translate z="-50"/></transform>
+    <bsdf type="null"/>
+    <medium type="homogeneous" name="interior">
+      <rgb name="albedo" value="0.8, 0.6, 0.4"/>
+      <rgb name="sigma_t" value="1"/>
+      <phase type="hg"><float name="g" value="{g}"/></phase>
+    </medium>
+  </shape>
+</scene>"#,
+        beam.x, beam.z, origin.x, origin.z, view.x, view.z
+    );
+    let (v, se) = read_meter(&xml, "meter", 4096);
+    let (e, albedo) = ([2.0, 3.0, 4.0], [0.8, 0.6, 0.4]);
+    let want: [f64; 3] = std::array::from_fn(|c| {
+        radiometry::single_scattering_half_space(e[c], albedo[c], hg, theta0.cos(), theta.cos())
+    });
+    assert_within_3se(v, se, want, "single scattering");
+}
+
 /// Null crossings are not scattering events (Mitsuba's volpath): with `max_depth` 1 an
 /// emitter seen through a null-bounded absorbing cube still shows, dimmed by its
 /// transmittance; under `path` the crossing would count as a bounce.
@@ -305,6 +352,11 @@ fn bad_media_are_located_errors() {
             "<medium type=\"heterogeneous\" name=\"interior\">\n<volume type=\"gridvolume\" name=\"sigma_t\">\n<string name=\"filename\" value=\"{file}\"/>\n</volume>\n</medium>"
         ))
     };
+    let e = load_error(&shape(
+        "<medium type=\"heterogeneous\" name=\"interior\">\n<volume type=\"gridvolume\" name=\"sigma_t\"/>\n</medium>",
+    ));
+    assert_eq!(e.pos.as_ref().map(|p| p.line), Some(6), "{e}");
+    assert!(e.message.contains("filename"), "{e}");
     let e = load_error(&grid("no-such.vol"));
     assert_eq!(e.pos.as_ref().map(|p| p.line), Some(7), "{e}");
     let dir = steradian::testkit::temp_dir("volpath-bad-vol");

@@ -161,6 +161,16 @@ pub fn beer_lambert(sigma_t: f64, d: f64) -> f64 {
     (-sigma_t * d).exp()
 }
 
+/// Singly scattered radiance (W/(m²·sr)) leaving a homogeneous half-space lit by a collimated
+/// beam of irradiance `e` (W/m², on a plane facing the beam) at incidence cos θ₀ = `mu0`, seen
+/// at exitance cos θ = `mu` (both from the surface normal), for single-scattering albedo
+/// `albedo` and phase-function value `phase` (1/sr) at the scattering angle between beam and
+/// view: L₁ = α p E μ₀ / (μ₀ + μ) (Chandrasekhar 1960, §1.4; depth z contributes
+/// σ_s p E e^(−σ_t z/μ₀) e^(−σ_t z/μ) dz/μ, σ_t itself cancels).
+pub fn single_scattering_half_space(e: f64, albedo: f64, phase: f64, mu0: f64, mu: f64) -> f64 {
+    albedo * phase * e * mu0 / (mu0 + mu)
+}
+
 /// Irradiance (W/m²) from an isotropic point source of intensity I (W/sr) at distance r, at
 /// incidence angle θ, through an absorbing slab of thickness `thickness` (m, parallel to the
 /// receiving plane, crossed at the same angle θ) of extinction `sigma_t` (1/m) in otherwise

@@ -78,6 +78,7 @@ fn homogeneous(_: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
     let sample_emitters =
         p.get_bool("sample_emitters")?.unwrap_or(Homogeneous::DEFAULT_SAMPLE_EMITTERS);
     let phase = nested_phase(node)?;
+    accept_spectral_extinction(node)?;
     let m =
         Homogeneous::new(sigma_t, albedo, scale, phase, sample_emitters).map_err(at_param(node))?;
     Ok(Medium::Homogeneous(m))
@@ -94,6 +95,7 @@ fn heterogeneous(b: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
     let sample_emitters =
         p.get_bool("sample_emitters")?.unwrap_or(Heterogeneous::DEFAULT_SAMPLE_EMITTERS);
     let phase = nested_phase(node)?;
+    accept_spectral_extinction(node)?;
     let m = Heterogeneous::new(sigma_t, albedo, scale, phase, sample_emitters).map_err(|e| {
         // a volume's error points at the volume
         match node.child(e.param) {
@@ -117,6 +119,13 @@ fn heterogeneous(b: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
         ));
     }
     Ok(Medium::Heterogeneous(Box::new(m)))
+}
+
+/// Mitsuba's `has_spectral_extinction` (a boolean, default true) is read and has no effect:
+/// steradian's free flights are unbiased either way (spectral MIS, `steradian::medium`), and a
+/// grey σ_t is recognised from its values.
+fn accept_spectral_extinction(node: &PluginNode) -> Result<(), LoadError> {
+    node.props.get_bool("has_spectral_extinction").map(|_| ())
 }
 
 /// A medium's volume parameter: a nested `<volume name="...">` (or a `<ref>` to one), else a

@@ -26,11 +26,20 @@
 //! scattering adds one; emitters are seen while the depth is below `max_depth`, lights are
 //! sampled from a vertex only while depth + 1 is.
 //!
-//! **Where steradian differs on purpose.** `volpath` and `volpathmis` are one estimator: a
-//! chromatic medium's free flights are drawn in a channel chosen uniformly and weighted by the
-//! balance heuristic over the three channels' densities (`volpathmis`'s spectral MIS), where
-//! Mitsuba's `volpath` divides by the chosen channel's density alone. Both are unbiased, so the
-//! images agree in expectation; the MIS weights stay bounded where a single channel's blow up.
+//! **Where steradian differs on purpose.** `volpath` and `volpathmis` are one estimator: free
+//! flights are drawn in a channel chosen once per path, and the path is weighted by the
+//! balance heuristic over the three channels' path densities (`volpathmis`'s spectral MIS,
+//! `crate::medium`), where Mitsuba's `volpath` divides by the chosen channel's density alone.
+//! Both are unbiased, so the images agree in expectation; the MIS weights stay bounded where a
+//! single channel's blow up. Mitsuba's `volpathmis` combines light and phase/BSDF samples by
+//! the balance heuristic, steradian by the power heuristic (as `volpath`): the same
+//! expectation. A shape's `<medium>` must be named `interior` or `exterior` (Mitsuba ignores
+//! other names silently); all sensors share one medium.
+//!
+//! Measured (`benches/render_vs_mitsuba.py`, 1024 spp, against Mitsuba 3.9.1 `llvm_ad_rgb`,
+//! time to relMSE 10⁻³; 2026-12-06, Intel Xeon, 2 cores; `benches/results/`):
+//! `volpath-sphere` (homogeneous, grey) 2.52× faster, `volpathmis-chromatic` 2.13×,
+//! `volpath-cloud` (heterogeneous, delta tracking) 0.98×.
 
 use glam::Vec3;
 

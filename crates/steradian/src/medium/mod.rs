@@ -15,7 +15,10 @@
 //! channel ([`FlightWeight`]), so that the integrator can weight the whole path by the balance
 //! heuristic over the three channels' path densities (spectral MIS, as Mitsuba's
 //! `volpathmis`; Miller et al. 2019): a path's throughput is Πf / mean_j(Πp_j), bounded by 3×
-//! that of the channel it was drawn in, and unbiased in every channel.
+//! that of the channel it was drawn in, and unbiased in every channel. Decision: MIS over
+//! whole paths, not over each flight alone (whose weights multiply up to 3ᵏ after k events):
+//! on `volpathmis-chromatic` (σ_t 0.5, 2.5, 6 /m) relMSE against the 4096-spp reference at
+//! 4096 spp fell from 1.0e-3 to 2.8e-4 (2026-12-06, Intel Xeon, 2 cores).
 
 mod gridvolume;
 mod heterogeneous;

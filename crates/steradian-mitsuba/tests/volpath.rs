@@ -87,7 +87,7 @@ fn chromatic_medium_under_volpathmis_and_volpath() {
     mutant_fails(
         "volpathmis-chromatic",
         "<float name=\"weight\" value=\"0.4\"/>",
-        "<float name=\"weight\" value=\"0.6\"/>",
+        "<float name=\"weight\" value=\"0.9\"/>",
     );
 }
 

@@ -71,8 +71,8 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
         ("texture", "volume"),
         ("bsdf", "hair"),
         ("bsdf", "polarizer"),
-        ("integrator", "prb"),
-        ("integrator", "prbvolpath"),
+        ("integrator", "prb_basic"),
+        ("integrator", "stokes"),
     ] {
         let e = err(&scene(&format!("<{tag} type=\"{ty}\"/>")));
         let want = format!("the Mitsuba 3 {tag} plugin '{ty}' is not supported by steradian");

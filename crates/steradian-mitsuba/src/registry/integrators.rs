@@ -1,5 +1,12 @@
 //! Integrator plugins: `path`, `volpath`, `volpathmis`, `direct`, `depth`, `moment`, `aov`,
-//! `ptracer`.
+//! `ptracer`; and Mitsuba's differentiable integrators by the images they render (their
+//! primal): `prb` and `prb_projective` as `path`, `prbvolpath` as `volpath`,
+//! `direct_projective` as `path` with `max_depth` 2. Their default `max_depth` is 6, as in
+//! Mitsuba 3.9.1's Python integrators; the gradient-only parameters of the projective ones
+//! (`sppc`, `sppp`, `sppi`, `guiding`, `guiding_proj`, `guiding_rounds`, `project_seed`) are
+//! checked and have no effect. `prb_basic` stays unsupported: it samples BSDFs only, so
+//! Mitsuba renders no light from point, spot and directional lights with it, which `path`
+//! would.
 
 use steradian::emitter::LightSelection;
 use steradian::integrator::{
@@ -11,7 +18,7 @@ use steradian::integrator::{
     ParticleTracer, PathTracer, VolPathTracer,
 };
 
-use super::{at_param, lookup, Plugins};
+use super::{at_param, choice, lookup, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
@@ -55,6 +62,10 @@ pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> = &[
     ("path", path),
     ("volpath", volpath),
     ("volpathmis", volpath),
+    ("prb", prb),
+    ("prb_projective", prb_projective),
+    ("prbvolpath", prbvolpath),
+    ("direct_projective", direct_projective),
     ("direct", direct),
     ("depth", depth),
     ("moment", moment),
@@ -91,9 +102,62 @@ pub(crate) fn build(node: &PluginNode) -> Result<Integrator, LoadError> {
 }
 
 fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
+    path_with(node, DEFAULT_MAX_DEPTH)
+}
+
+/// `max_depth` where a scene leaves it unset under Mitsuba's differentiable integrators.
+const RB_DEFAULT_MAX_DEPTH: Option<u32> = Some(6);
+
+/// `prb`: path replay backpropagation, whose image is `path`'s.
+fn prb(node: &PluginNode) -> Result<Integrator, LoadError> {
+    path_with(node, RB_DEFAULT_MAX_DEPTH)
+}
+
+/// `prb_projective`: `prb` with projective sampling for visibility gradients.
+fn prb_projective(node: &PluginNode) -> Result<Integrator, LoadError> {
+    projective_parameters(node)?;
+    path_with(node, RB_DEFAULT_MAX_DEPTH)
+}
+
+/// `direct_projective`: direct illumination (Mitsuba fixes `max_depth` at 2 and `rr_depth` at
+/// 2, whatever the scene gives).
+fn direct_projective(node: &PluginNode) -> Result<Integrator, LoadError> {
+    projective_parameters(node)?;
+    let p = &node.props;
+    for name in ["max_depth", "rr_depth"] {
+        // read, as Mitsuba reads them before overriding them
+        p.get_int(name)?;
+    }
+    Ok(Integrator::Path(PathTracer {
+        max_depth: Some(2),
+        emitters: visibility(p.get_bool("hide_emitters")?),
+        light_selection: light_selection(node)?,
+        ..PathTracer::default()
+    }))
+}
+
+/// The projective integrators' gradient-only parameters, checked as Mitsuba checks them.
+fn projective_parameters(node: &PluginNode) -> Result<(), LoadError> {
+    let p = &node.props;
+    for name in ["sppc", "sppp", "sppi", "guiding_rounds"] {
+        p.get_int(name)?;
+    }
+    p.get_bool("guiding_proj")?;
+    choice(node, "guiding", (), &[("none", ()), ("grid", ()), ("octree", ())])?;
+    choice(node, "project_seed", (), &[("both", ()), ("bsdf", ()), ("emitter", ())])?;
+    Ok(())
+}
+
+/// `prbvolpath`: `prb` through participating media, whose image is `volpath`'s.
+fn prbvolpath(node: &PluginNode) -> Result<Integrator, LoadError> {
+    volpath_with(node, RB_DEFAULT_MAX_DEPTH)
+}
+
+/// `path` and the integrators that render as it does, with their default `max_depth`.
+fn path_with(node: &PluginNode, default_max_depth: Option<u32>) -> Result<Integrator, LoadError> {
     let p = &node.props;
     let max_depth = match p.get_int("max_depth")? {
-        None => DEFAULT_MAX_DEPTH,
+        None => default_max_depth,
         Some(v) => parse_max_depth(v).map_err(at_param(node))?,
     };
     let rr_depth = count(node, "rr_depth", DEFAULT_RR_DEPTH as i64)?;
@@ -126,9 +190,17 @@ fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
 /// `volpath` and `volpathmis` (one estimator, `steradian::integrator::VolPathTracer`):
 /// `max_depth`, `rr_depth`, `hide_emitters`, and steradian's `light_selection`.
 fn volpath(node: &PluginNode) -> Result<Integrator, LoadError> {
+    volpath_with(node, DEFAULT_MAX_DEPTH)
+}
+
+/// `volpath` and the integrators that render as it does, with their default `max_depth`.
+fn volpath_with(
+    node: &PluginNode,
+    default_max_depth: Option<u32>,
+) -> Result<Integrator, LoadError> {
     let p = &node.props;
     let max_depth = match p.get_int("max_depth")? {
-        None => DEFAULT_MAX_DEPTH,
+        None => default_max_depth,
         Some(v) => parse_max_depth(v).map_err(at_param(node))?,
     };
     let rr_depth = count(node, "rr_depth", DEFAULT_RR_DEPTH as i64)?;

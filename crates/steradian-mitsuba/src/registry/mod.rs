@@ -234,10 +234,7 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("film", &["specfilm"]),
     ("texture", &["volume"]),
     ("phase", &["sggx", "tabphase"]),
-    (
-        "integrator",
-        &["stokes", "prb", "prb_basic", "prbvolpath", "direct_projective", "prb_projective"],
-    ),
+    ("integrator", &["stokes", "prb_basic"]),
 ];
 
 /// The builder for `node`'s `type`, or an error: a Mitsuba 3 plugin steradian lacks is named as

@@ -60,6 +60,10 @@ const SCENES: &[(&str, &str)] = &[
         "window_sky_component.xml",
         include_str!("../../../scenes/validation/window_sky_component.xml"),
     ),
+    (
+        "sun_and_sky_horizontal_illuminance.xml",
+        include_str!("../../../scenes/validation/sun_and_sky_horizontal_illuminance.xml"),
+    ),
 ];
 const CASES: &str = include_str!("../../../scenes/validation/cases.json");
 const MATH_CASES: &str = include_str!("../../../scenes/validation/math_cases.json");

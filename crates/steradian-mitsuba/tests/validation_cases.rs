@@ -42,6 +42,8 @@ cases!(
     overcast_sky_horizontal_illuminance,
     roof_opening_sky_component,
     window_sky_component,
+    sun_and_sky_horizontal_illuminance,
+    sun_disk_radiance,
 );
 
 #[test]
@@ -64,6 +66,8 @@ fn every_case_has_a_test() {
         "overcast_sky_horizontal_illuminance",
         "roof_opening_sky_component",
         "window_sky_component",
+        "sun_and_sky_horizontal_illuminance",
+        "sun_disk_radiance",
     ];
     ours.sort();
     assert_eq!(names, ours);

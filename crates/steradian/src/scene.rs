@@ -81,6 +81,8 @@ pub struct Scene {
     pub emitters: Vec<Emitter>,
     /// The light at infinity that escaping rays see (Mitsuba allows one).
     pub environment: Option<u32>,
+    /// The sun (steradian's `sun`, at most one), at infinity beside the environment.
+    pub sun: Option<u32>,
     pub sensors: Vec<Sensor>,
     /// Participating media (`crate::medium`).
     pub media: Vec<Medium>,
@@ -174,6 +176,16 @@ impl Scene {
                 "only one environment emitter (`constant` or `envmap`) is allowed per scene".into(),
             );
         }
+        let suns: Vec<u32> = desc
+            .emitters
+            .iter()
+            .enumerate()
+            .filter(|(_, e)| matches!(e, Emitter::Sun(_)))
+            .map(|(i, _)| i as u32)
+            .collect();
+        if suns.len() > 1 {
+            return Err("only one `sun` is allowed per scene".into());
+        }
         let build_start = std::time::Instant::now();
         let mut groups = Vec::with_capacity(desc.groups.len());
         for (g, members) in desc.groups.into_iter().enumerate() {
@@ -230,6 +242,7 @@ impl Scene {
             bsdfs: desc.bsdfs,
             emitters: desc.emitters,
             environment: envs.first().copied(),
+            sun: suns.first().copied(),
             sensors,
             instance_bindings,
             accel,
@@ -396,8 +409,9 @@ impl Scene {
             * self.emitter_selection_pdf(e)
     }
 
-    /// Radiance arriving from the environment light `env` along world direction `d` (a ray
-    /// that left the scene), and the density (selection included) with which
+    /// Radiance arriving from the light at infinity `env` (the environment or the sun) along
+    /// world direction `d` (a ray that left the scene), and the density (selection included)
+    /// with which
     /// [`Scene::sample_emitter_direction`] proposes `d`.
     #[inline]
     pub fn environment_radiance_and_pdf(&self, env: u32, d: Vec3) -> (crate::Spectrum, f32) {
@@ -481,6 +495,32 @@ impl Scene {
         // a shadow ray still crossing surfaces after this many is caught between coincident
         // ones: counted as blocked rather than traced for ever
         Spectrum::ZERO
+    }
+
+    /// The radiance arriving along a ray that escaped the scene in world direction `d`, from
+    /// every light at infinity (the environment, the sun), each weighted by `mis` of the
+    /// density (selection included) with which [`Scene::sample_emitter_direction`] proposes `d`
+    /// for that light.
+    #[inline]
+    pub fn escaped_radiance(&self, d: Vec3, mut mis: impl FnMut(f32) -> f32) -> Spectrum {
+        let mut l = Spectrum::ZERO;
+        if let Some(env) = self.environment {
+            let (le, pdf) = self.environment_radiance_and_pdf(env, d);
+            l += le * mis(pdf);
+        }
+        if let Some(sun) = self.sun {
+            let (le, pdf) = self.environment_radiance_and_pdf(sun, d);
+            if le != Spectrum::ZERO {
+                l += le * mis(pdf);
+            }
+        }
+        l
+    }
+
+    /// Whether a ray escaping the scene can see light (an environment or a sun).
+    #[inline]
+    pub fn has_light_at_infinity(&self) -> bool {
+        self.environment.is_some() || self.sun.is_some()
     }
 
     /// Index of the sensor with the given `id`.

@@ -4,7 +4,7 @@
 
 use steradian::emitter::{
     cie_sky, from_photometric, AreaLight, ConstantEnvironment, DirectionalLight, Emitter,
-    EnvironmentMap, Luminaire, PointLight, Projector, SkyLevel, SkyModel, SpotLight,
+    EnvironmentMap, Luminaire, PointLight, Projector, SkyLevel, SkyModel, SpotLight, Sun,
 };
 use steradian::geometry::Transform;
 use steradian::photometry::{parse_eulumdat, parse_ies, IntensityTable};
@@ -150,6 +150,7 @@ pub(super) const EMITTERS: &Plugins<BuildEmitter> = &[
     ("projector", projector),
     ("luminaire", build_luminaire),
     ("ciesky", build_ciesky),
+    ("sun", sun),
 ];
 
 /// steradian's `ciesky` (parameters and defaults: `steradian::emitter::cie_sky`).
@@ -327,6 +328,25 @@ fn directional(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadEr
         (None, None) => DirectionalLight::DEFAULT_DIRECTION,
     };
     Ok(Emitter::Directional(DirectionalLight::new(direction, irradiance).map_err(at(node))?))
+}
+
+/// steradian's own `sun` (`steradian::emitter::Sun`): `sun_direction` (required), `irradiance`
+/// or `illuminance` (with `color`), `angular_radius` in degrees.
+fn sun(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let lx = [("illuminance", "lx", 1.0)];
+    let irradiance = strength(node, "irradiance", Sun::DEFAULT_IRRADIANCE, &lx)?;
+    let towards = p.get_vector("sun_direction")?.ok_or_else(|| {
+        LoadError::at(
+            &node.pos,
+            format!("{}: missing parameter 'sun_direction' (towards the sun)", node.desc()),
+        )
+    })?;
+    let radius = p.get_float("angular_radius")?.unwrap_or(Sun::DEFAULT_ANGULAR_RADIUS);
+    Sun::new(towards, irradiance, radius).map(Emitter::Sun).map_err(|m| {
+        let name = if m.contains("angular_radius") { "angular_radius" } else { "sun_direction" };
+        LoadError::at(p.position(name).unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
+    })
 }
 
 fn constant(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {

@@ -101,6 +101,11 @@ impl Emitter {
                 let (ray, area) = from_infinity(-s.wi, center, radius, u_pos);
                 EmittedRay { ray, weight: s.weight * area }
             }
+            Emitter::Sun(e) => {
+                let s = e.sample_direction(u_dir)?;
+                let (ray, area) = from_infinity(-s.wi, center, radius, u_pos);
+                EmittedRay { ray, weight: s.weight * area }
+            }
             Emitter::Projector(_) => return None,
         };
         (emitted.weight != Spectrum::ZERO && emitted.weight.is_finite()).then_some(emitted)

@@ -11,6 +11,7 @@
 //! | `projector`   | irradiance E of an image on the plane z = 1 (× π, × `scale`) | W/m² |
 //! | `ciesky`      | luminance of a CIE standard sky (overcast, general types 1–15), as an `envmap` | cd/m² (→ W/(m²·sr) at 683 lm/W) |
 //! | `luminaire`   | luminous intensity I(γ, C) of a photometric file | cd (→ W/sr at 683 lm/W) |
+//! | `sun`         | direct normal irradiance of the solar disk (or illuminance, lx) | W/m² |
 //!
 //! `sample_direction` answers "from which direction does this light reach point p, and with
 //! what weight?": the returned `weight` is the incident radiance divided by the solid-angle
@@ -29,6 +30,7 @@ mod photometric;
 mod point;
 mod projector;
 mod spot;
+mod sun;
 
 pub use area::AreaLight;
 pub use ciesky::{cie_sky, horizontal_illuminance, SkyLevel, SkyModel};
@@ -42,6 +44,7 @@ pub use photometric::from_photometric;
 pub use point::PointLight;
 pub use projector::Projector;
 pub use spot::SpotLight;
+pub use sun::Sun;
 
 use glam::{Vec2, Vec3};
 
@@ -84,6 +87,8 @@ pub enum Emitter {
     EnvMap(EnvironmentMap),
     Projector(Projector),
     Luminaire(Luminaire),
+    /// The solar disk (steradian's own), at infinity beside the environment.
+    Sun(Sun),
 }
 
 impl Emitter {
@@ -99,6 +104,7 @@ impl Emitter {
             Emitter::Constant(e) => e.sample_direction(p, u),
             Emitter::EnvMap(e) => e.sample_direction(u),
             Emitter::Projector(e) => e.sample_direction(p),
+            Emitter::Sun(e) => e.sample_direction(u),
         }
     }
 
@@ -110,6 +116,7 @@ impl Emitter {
             Emitter::Area(e) => e.pdf_direction(shapes, p, wi, light),
             Emitter::Constant(e) => e.pdf_direction(wi),
             Emitter::EnvMap(e) => e.pdf_direction(wi),
+            Emitter::Sun(e) => e.radiance_and_pdf(wi).1,
             Emitter::Point(_)
             | Emitter::Luminaire(_)
             | Emitter::Spot(_)
@@ -127,6 +134,7 @@ impl Emitter {
             Emitter::Area(e) => e.radiance(wo, n, uv),
             Emitter::Constant(e) => e.radiance(),
             Emitter::EnvMap(e) => e.radiance(-wo),
+            Emitter::Sun(e) => e.radiance_and_pdf(-wo).0,
             Emitter::Point(_)
             | Emitter::Luminaire(_)
             | Emitter::Spot(_)
@@ -143,6 +151,7 @@ impl Emitter {
         match self {
             Emitter::Constant(e) => (e.radiance(), e.pdf_direction(d)),
             Emitter::EnvMap(e) => e.radiance_and_pdf(d),
+            Emitter::Sun(e) => e.radiance_and_pdf(d),
             Emitter::Area(_)
             | Emitter::Point(_)
             | Emitter::Luminaire(_)
@@ -155,7 +164,9 @@ impl Emitter {
     #[inline]
     pub fn support(&self) -> Support {
         match self {
-            Emitter::Area(_) | Emitter::Constant(_) | Emitter::EnvMap(_) => Support::Extended,
+            Emitter::Area(_) | Emitter::Constant(_) | Emitter::EnvMap(_) | Emitter::Sun(_) => {
+                Support::Extended
+            }
             Emitter::Point(_)
             | Emitter::Luminaire(_)
             | Emitter::Spot(_)
@@ -177,11 +188,14 @@ impl Emitter {
             | Emitter::Spot(_)
             | Emitter::Directional(_)
             | Emitter::Projector(_) => true,
+            // uniform in a small cone: the weight L·Ω·cos is bounded
+            Emitter::Sun(_) => true,
             Emitter::Constant(_) | Emitter::EnvMap(_) => false,
         }
     }
 
-    /// True for lights at infinity that rays escaping the scene see.
+    /// True for the environment (the sky around the scene: at most one per scene), which
+    /// rays escaping the scene see. The sun, at infinity too, is not one: it goes beside it.
     #[inline]
     pub fn is_environment(&self) -> bool {
         matches!(self, Emitter::Constant(_) | Emitter::EnvMap(_))
@@ -200,6 +214,7 @@ impl Emitter {
             Emitter::Constant(e) => e.radiance * 4.0 * PI * PI * scene_radius * scene_radius,
             Emitter::EnvMap(e) => e.integral() * PI * scene_radius * scene_radius,
             Emitter::Projector(e) => e.flux(),
+            Emitter::Sun(e) => e.irradiance * PI * scene_radius * scene_radius,
         }
     }
 }

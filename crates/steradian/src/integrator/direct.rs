@@ -11,15 +11,12 @@
 //! Light samples and BSDF samples are combined with the power heuristic, each strategy weighted
 //! by its sample count, as Mitsuba 3's `direct` does.
 
-use glam::{Vec2, Vec3};
-
 use super::mis::power_heuristic;
 use super::path::EmitterVisibility;
 use crate::bsdf::{Lobe, ShadingPoint};
 use crate::emitter::LightSelection;
 use crate::emitter::Support;
 use crate::geometry::Ray;
-use crate::geometry::SurfacePoint;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
 use crate::Spectrum;
@@ -51,11 +48,9 @@ impl DirectIntegrator {
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
         let show = self.emitters == EmitterVisibility::Visible;
         let Some(si) = scene.intersect(ray) else {
-            return match (scene.environment, show) {
-                (Some(env), true) => {
-                    scene.emitters[env as usize].radiance(-ray.d, Vec3::ZERO, Vec2::ZERO)
-                }
-                _ => Spectrum::ZERO,
+            return match show {
+                true => scene.escaped_radiance(ray.d, |_| 1.0),
+                false => Spectrum::ZERO,
             };
         };
         let mut result = Spectrum::ZERO;
@@ -93,34 +88,29 @@ impl DirectIntegrator {
             let Some(bs) = bsdf.sample(&sp, wo, sampler.next_1d(), u2) else { continue };
             let d = si.to_world(bs.wi).normalize();
             let next = si.spawn_ray(d);
-            let (le, e, light) = match scene.intersect(&next) {
+            let mis = |light_pdf: f32| match bs.lobe {
+                Lobe::Delta | Lobe::Null => 1.0,
+                Lobe::Smooth if ne > 0.0 && bsdf.has_smooth_lobe() => {
+                    power_heuristic(bs.pdf * nb, light_pdf * ne)
+                }
+                Lobe::Smooth => 1.0,
+            };
+            let le = match scene.intersect(&next) {
                 Some(hit) => match scene.area_emitter(&hit) {
                     Some((e, emitter)) => {
-                        (emitter.radiance(hit.wo, hit.n, hit.uv), e, hit.surface_point())
+                        let le = emitter.radiance(hit.wo, hit.n, hit.uv);
+                        if le == Spectrum::ZERO {
+                            continue;
+                        }
+                        let light = hit.surface_point();
+                        le * mis(scene.pdf_emitter_direction(e, si.p, d, &light))
                     }
                     None => continue,
                 },
-                None => match scene.environment {
-                    Some(env) => (
-                        scene.emitters[env as usize].radiance(-d, Vec3::ZERO, Vec2::ZERO),
-                        env,
-                        SurfacePoint::AT_INFINITY,
-                    ),
-                    None => continue,
-                },
+                // the environment and the sun, each with its own density
+                None => scene.escaped_radiance(d, mis),
             };
-            if le == Spectrum::ZERO {
-                continue;
-            }
-            let w = match bs.lobe {
-                Lobe::Delta | Lobe::Null => 1.0,
-                Lobe::Smooth if ne > 0.0 && bsdf.has_smooth_lobe() => power_heuristic(
-                    bs.pdf * nb,
-                    scene.pdf_emitter_direction(e, si.p, d, &light) * ne,
-                ),
-                Lobe::Smooth => 1.0,
-            };
-            result += bs.weight * le * (w / nb);
+            result += bs.weight * le * (1.0 / nb);
         }
         result
     }

@@ -161,6 +161,12 @@ pub fn estimate_irradiance(
                 };
                 h += le * (PI * w);
             }
+            if let Some(sun) = scene.sun {
+                let (le, pdf_e) = scene.emitters[sun as usize].radiance_and_pdf_from(wi);
+                if le != Spectrum::ZERO {
+                    h += le * (PI * power_heuristic(pdf, pdf_e));
+                }
+            }
         }
     }
     if let Some(reflected) = reflected_only(integrator) {

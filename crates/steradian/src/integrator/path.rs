@@ -319,13 +319,12 @@ impl PathTracer {
         let show_emitters = st.depth > 0 || self.emitters == EmitterVisibility::Visible;
         tally.ray();
         let Some(si) = scene.intersect(&st.ray) else {
-            if let (Some(env), true) = (scene.environment, show_emitters) {
-                let (le, light_pdf) = scene.environment_radiance_and_pdf(env, st.ray.d);
-                let w = match st.prev_lobe {
-                    Lobe::Delta | Lobe::Null => 1.0,
-                    Lobe::Smooth => power_heuristic(st.prev_pdf, light_pdf),
-                };
-                *result += st.beta * le * w;
+            if show_emitters && scene.has_light_at_infinity() {
+                *result += st.beta
+                    * scene.escaped_radiance(st.ray.d, |light_pdf| match st.prev_lobe {
+                        Lobe::Delta | Lobe::Null => 1.0,
+                        Lobe::Smooth => power_heuristic(st.prev_pdf, light_pdf),
+                    });
             }
             return None;
         };

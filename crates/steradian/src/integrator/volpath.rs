@@ -189,13 +189,12 @@ impl VolPathTracer {
 
             let show = depth > 0 || self.emitters == EmitterVisibility::Visible;
             let Some(si) = hit else {
-                if let (Some(env), true) = (scene.environment, show) {
-                    let (le, light_pdf) = scene.environment_radiance_and_pdf(env, ray.d);
-                    let w = match last {
-                        LastScatter::Unsampled => 1.0,
-                        LastScatter::Sampled { pdf, .. } => power_heuristic(pdf, light_pdf),
-                    };
-                    result += throughput(beta, ratio) * le * w;
+                if show && scene.has_light_at_infinity() {
+                    result += throughput(beta, ratio)
+                        * scene.escaped_radiance(ray.d, |light_pdf| match last {
+                            LastScatter::Unsampled => 1.0,
+                            LastScatter::Sampled { pdf, .. } => power_heuristic(pdf, light_pdf),
+                        });
                 }
                 break;
             };

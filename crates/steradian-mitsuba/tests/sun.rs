@@ -119,4 +119,11 @@ fn bad_parameters_are_located_errors() {
     let two = "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<emitter type=\"sun\"><vector name=\"sun_direction\" x=\"0\" y=\"1\" z=\"0\"/></emitter>\n<emitter type=\"sun\"><vector name=\"sun_direction\" x=\"1\" y=\"1\" z=\"0\"/></emitter>\n</scene>";
     let e = load(two);
     assert!(e.message.contains("one `sun`"), "{e}");
+    // the daylight factor leaves the direct sun out: a scene with a sun is refused
+    let df = String::from(
+        "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<emitter type=\"ciesky\"><float name=\"zenith_luminance\" value=\"1000\"/></emitter>\n<emitter type=\"sun\"><vector name=\"sun_direction\" x=\"0\" y=\"1\" z=\"0\"/></emitter>\n<sensor type=\"workplane\" id=\"p\"><string name=\"quantity\" value=\"daylight_factor\"/></sensor>\n</scene>"
+    );
+    let e = load(&df);
+    assert!(e.message.contains("sun"), "{e}");
+    assert_eq!(e.pos.as_ref().map(|p| p.line), Some(5), "{e}");
 }

@@ -306,6 +306,16 @@ pub(crate) fn resolve_daylight_factors(b: &mut Builder) -> Result<(), LoadError>
             format!("{desc}: the daylight factor needs a sky brighter than 0 lx"),
         ));
     }
+    // E_in would hold the direct sun, which the daylight factor leaves out by definition
+    if b.desc.emitters.iter().any(|e| matches!(e, steradian::emitter::Emitter::Sun(_))) {
+        return Err(LoadError::at(
+            pos,
+            format!(
+                "{desc}: the daylight factor is defined under the sky alone: remove the scene's \
+                 `sun` (or measure illuminance)"
+            ),
+        ));
+    }
     drop(planes);
     for sensor in &mut b.desc.sensors {
         if let SensorKind::Workplane(w) = &mut sensor.kind {

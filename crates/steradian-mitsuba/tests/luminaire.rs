@@ -120,5 +120,79 @@ fn bad_luminaires_are_located_errors() {
         dir.join("down.ies").display()
     );
     let e = load(&nested);
-    assert!(e.contains("nested in a shape") && e.contains("not supported"), "{e}");
+    assert!(e.contains("must be flat") && e.contains("rectangle"), "{e}");
+}
+
+/// The meter's (lux, standard error) of green (white's) channel at `spp` samples.
+fn lux_with_error(xml: &str, spp: u32) -> (f64, f64) {
+    let job = steradian_mitsuba::load_string(xml, Path::new("luminaire.xml"), Path::new("."), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let sensor = job.scene.sensor_index("meter").unwrap();
+    let m = steradian::render::measure(
+        &job,
+        &RenderOptions {
+            spp: Some(spp),
+            seed: Some(2),
+            sensor: Some(sensor),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let k = LUMENS_PER_WATT as f64;
+    (m.value[1] * k, m.stderr[1] * k)
+}
+
+/// A cosine (Lambertian) downlight nested in a 0.3 × 0.3 m rectangle facing down is an area
+/// source of uniform luminance I₀/A: close below it the illuminance is L π F, F the
+/// configuration factor from the meter to the rectangle (Lambert's contour integral), not the
+/// point law; far away it is the point law again. Within 3 standard errors and the table's
+/// interpolation (cos γ tabulated every 5°, linear: 0.1 % low at most).
+#[test]
+fn a_luminaire_in_a_rectangle_is_an_area_source() {
+    use glam::DVec3;
+    let dir = temp_dir("luminous-opening");
+    write_file(&dir, "down.ies", IES);
+    let i0 = 3000.0 / std::f64::consts::PI;
+    let half = 0.15;
+    let scene = |h: f64, x: f64, z: f64| {
+        format!(
+            r#"<scene version="3.0.0">
+  <integrator type="path"><integer name="max_depth" value="1"/></integrator>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="{half}"/><rotate x="1" angle="90"/><translate y="{h}"/></transform>
+    <emitter type="luminaire">
+      <string name="filename" value="{}"/>
+      <transform name="to_world"><rotate x="1" angle="-90"/></transform>
+    </emitter>
+  </shape>
+  <shape type="disk">
+    <transform name="to_world"><scale value="1e-4"/><rotate x="1" angle="-90"/><translate x="{x}" z="{z}"/></transform>
+    <sensor type="irradiancemeter" id="meter">
+      <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>
+    </sensor>
+  </shape>
+</scene>"#,
+            dir.join("down.ies").display()
+        )
+    };
+    // near field: 0.4 m below the opening, off its axis
+    let (h, x, z) = (0.4, 0.2, 0.1);
+    let (got, se) = lux_with_error(&scene(h, x, z), 16384);
+    let p = DVec3::new(x, 0.0, z);
+    let corners = [(-half, -half), (half, -half), (half, half), (-half, half)]
+        .map(|(a, b)| DVec3::new(a, h, b));
+    let f = steradian::radiometry::polygon_configuration_factor(p, DVec3::Y, &corners);
+    let area = (2.0 * half) * (2.0 * half);
+    let want = i0 / area * std::f64::consts::PI * f;
+    let d2 = h * h + x * x + z * z;
+    let point_law = i0 * h * h / (d2 * d2);
+    eprintln!("near field: {got} ± {se} lx; area source {want}; point law {point_law}");
+    assert!((got - want).abs() <= 3.0 * se + 1e-3 * want, "{got} ± {se} vs {want}");
+    assert!((point_law / want - 1.0).abs() > 0.02, "the test must tell the two apart");
+    // far field: the point law
+    let (h, x) = (6.0, 1.0);
+    let (got, se) = lux_with_error(&scene(h, x, 0.0), 4096);
+    let d2 = h * h + x * x;
+    let point_law = i0 * h * h / (d2 * d2);
+    assert!((got - point_law).abs() <= 3.0 * se + 2e-3 * point_law, "{got} vs {point_law}");
 }

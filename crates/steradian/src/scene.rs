@@ -155,7 +155,7 @@ impl Scene {
             }
             if let Some(e) = b.emitter {
                 match desc.emitters.get(e as usize) {
-                    Some(Emitter::Area(a)) if a.shape as usize == i => shapes[i].prepare_sampling(),
+                    Some(e) if e.shape() == Some(i as u32) => shapes[i].prepare_sampling(),
                     _ => {
                         return Err(format!(
                             "shape {i} refers to emitter {e}, which is not its area light"

@@ -4,7 +4,8 @@
 
 use steradian::emitter::{
     cie_sky, from_photometric, AreaLight, ConstantEnvironment, DirectionalLight, Emitter,
-    EnvironmentMap, Luminaire, PointLight, Projector, SkyLevel, SkyModel, SpotLight, Sun,
+    EnvironmentMap, Luminaire, LuminousOpening, PointLight, Projector, SkyLevel, SkyModel,
+    SpotLight, Sun,
 };
 use steradian::geometry::Transform;
 use steradian::photometry::{parse_eulumdat, parse_ies, IntensityTable};
@@ -23,13 +24,10 @@ pub(crate) fn build_area(
     b: &super::Builder,
     node: &PluginNode,
     shape: u32,
+    geometry: &steradian::shape::Shape,
 ) -> Result<Option<Emitter>, LoadError> {
     if node.plugin_type == "luminaire" {
-        return Err(LoadError::at(
-            &node.pos,
-            "a 'luminaire' nested in a shape (an area source over its luminous opening) is not \
-             supported: declare it at the scene level, where it is a point source",
-        ));
+        return build_luminous_opening(b, node, shape, geometry).map(Some);
     }
     if node.plugin_type != "area" && node.plugin_type != "directionalarea" {
         return Err(LoadError::at(
@@ -199,7 +197,58 @@ fn build_ciesky(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadEr
 }
 
 /// steradian's `luminaire` (parameters and defaults: `steradian::emitter::Luminaire`).
-fn build_luminaire(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+/// A `luminaire` nested in a flat shape (`steradian::emitter::LuminousOpening`): the
+/// luminaire's parameters, `to_world` a rotation of its photometric frame.
+fn build_luminous_opening(
+    b: &super::Builder,
+    node: &PluginNode,
+    shape: u32,
+    geometry: &steradian::shape::Shape,
+) -> Result<Emitter, LoadError> {
+    use steradian::shape::Shape;
+    if !matches!(geometry, Shape::Rectangle(_) | Shape::Disk(_)) {
+        return Err(LoadError::at(
+            &node.pos,
+            format!(
+                "{}: a luminaire's luminous opening must be flat: nest it in a `rectangle` or a `disk`",
+                node.desc()
+            ),
+        ));
+    }
+    let table = read_intensity_table(b, node)?;
+    let p = &node.props;
+    let scale = p.get_float("scale")?.unwrap_or(Luminaire::DEFAULT_SCALE);
+    let color = p.get_spectrum("color")?.unwrap_or(Spectrum::splat(Luminaire::DEFAULT_COLOR));
+    let per_candela = from_photometric(scale, color).map_err(|e| {
+        let name = if scale.is_finite() && scale >= 0.0 { "color" } else { "scale" };
+        LoadError::at(p.position(name).unwrap_or(&node.pos), format!("{}: {name} {e}", node.desc()))
+    })?;
+    let rotation = p.get_transform("to_world")?.unwrap_or_default();
+    if rotation.translation() != Vec3::ZERO {
+        return Err(LoadError::at(
+            p.position("to_world").unwrap_or(&node.pos),
+            format!("{}: in a shape, to_world only turns the photometric frame (the shape places the opening): no translation", node.desc()),
+        ));
+    }
+    let opening = LuminousOpening::new(
+        shape,
+        geometry.surface_area(),
+        rotation.linear(),
+        std::sync::Arc::new(table),
+        per_candela,
+    )
+    .map_err(|m| {
+        LoadError::at(p.position("to_world").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
+    })?;
+    node.check_all_used()?;
+    Ok(Emitter::LuminousOpening(opening))
+}
+
+/// The intensity table of a `luminaire`'s photometric file (`filename`, `.ies` or `.ldt`).
+fn read_intensity_table(
+    b: &super::Builder,
+    node: &PluginNode,
+) -> Result<IntensityTable, LoadError> {
     let p = &node.props;
     let filename = required_string(node, "filename", " (an .ies or .ldt file)")?;
     let at_file = |msg: String| {
@@ -222,7 +271,12 @@ fn build_luminaire(b: &super::Builder, node: &PluginNode) -> Result<Emitter, Loa
     // photometric files are often Latin-1: their text fields do not matter, their numbers are ASCII
     let text = String::from_utf8_lossy(&bytes);
     let photometry = parse(&text).map_err(|e| at_file(e.to_string()))?;
-    let table = IntensityTable::new(&photometry).map_err(at_file)?;
+    IntensityTable::new(&photometry).map_err(at_file)
+}
+
+fn build_luminaire(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+    let p = &node.props;
+    let table = read_intensity_table(b, node)?;
     let scale = p.get_float("scale")?.unwrap_or(Luminaire::DEFAULT_SCALE);
     let color = p.get_spectrum("color")?.unwrap_or(Spectrum::splat(Luminaire::DEFAULT_COLOR));
     let to_world = position_or_to_world(node)?;

@@ -170,7 +170,7 @@ fn build_shape_node(
     let shape_index = b.desc.shapes.len() as u32;
     // (the emitter's index, whether the shape carries one: `directionalarea` adds none)
     let (emitter, emitting) = match emitter_nodes.first() {
-        Some(e) => match emitters::build_area(b, &e.node, shape_index)? {
+        Some(e) => match emitters::build_area(b, &e.node, shape_index, &shape)? {
             Some(light) => {
                 b.desc.emitters.push(light);
                 (Some((b.desc.emitters.len() - 1) as u32), true)

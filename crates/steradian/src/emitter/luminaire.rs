@@ -23,8 +23,8 @@
 //!
 //! Its flux (for choosing among lights by power, and for `ptracer`'s emission sampling) is the
 //! table's ∫ I dω; emission directions are drawn from the table by flux with the exact density.
-//! A `luminaire` nested in a shape (an area source over the luminous opening) is not supported:
-//! the loader refuses it.
+//! A `luminaire` nested in a flat shape is an area source over that luminous opening
+//! (`luminous_opening.rs`).
 
 use std::sync::Arc;
 

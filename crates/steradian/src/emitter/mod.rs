@@ -26,6 +26,7 @@ mod emission;
 mod envmap;
 mod light_selection;
 mod luminaire;
+mod luminous_opening;
 mod photometric;
 mod point;
 mod projector;
@@ -40,6 +41,7 @@ pub use emission::EmittedRay;
 pub use envmap::EnvironmentMap;
 pub use light_selection::LightSelection;
 pub use luminaire::{Luminaire, LUMENS_PER_WATT};
+pub use luminous_opening::LuminousOpening;
 pub use photometric::from_photometric;
 pub use point::PointLight;
 pub use projector::Projector;
@@ -89,6 +91,8 @@ pub enum Emitter {
     Luminaire(Luminaire),
     /// The solar disk (steradian's own), at infinity beside the environment.
     Sun(Sun),
+    /// A `luminaire` nested in a flat shape: an area source over its luminous opening.
+    LuminousOpening(LuminousOpening),
 }
 
 impl Emitter {
@@ -105,6 +109,7 @@ impl Emitter {
             Emitter::EnvMap(e) => e.sample_direction(u),
             Emitter::Projector(e) => e.sample_direction(p),
             Emitter::Sun(e) => e.sample_direction(u),
+            Emitter::LuminousOpening(e) => e.sample_direction(shapes, p, u),
         }
     }
 
@@ -117,6 +122,7 @@ impl Emitter {
             Emitter::Constant(e) => e.pdf_direction(wi),
             Emitter::EnvMap(e) => e.pdf_direction(wi),
             Emitter::Sun(e) => e.radiance_and_pdf(wi).1,
+            Emitter::LuminousOpening(e) => e.pdf_direction(shapes, p, wi, light),
             Emitter::Point(_)
             | Emitter::Luminaire(_)
             | Emitter::Spot(_)
@@ -135,6 +141,7 @@ impl Emitter {
             Emitter::Constant(e) => e.radiance(),
             Emitter::EnvMap(e) => e.radiance(-wo),
             Emitter::Sun(e) => e.radiance_and_pdf(-wo).0,
+            Emitter::LuminousOpening(e) => e.radiance(wo, n),
             Emitter::Point(_)
             | Emitter::Luminaire(_)
             | Emitter::Spot(_)
@@ -153,6 +160,7 @@ impl Emitter {
             Emitter::EnvMap(e) => e.radiance_and_pdf(d),
             Emitter::Sun(e) => e.radiance_and_pdf(d),
             Emitter::Area(_)
+            | Emitter::LuminousOpening(_)
             | Emitter::Point(_)
             | Emitter::Luminaire(_)
             | Emitter::Spot(_)
@@ -164,9 +172,11 @@ impl Emitter {
     #[inline]
     pub fn support(&self) -> Support {
         match self {
-            Emitter::Area(_) | Emitter::Constant(_) | Emitter::EnvMap(_) | Emitter::Sun(_) => {
-                Support::Extended
-            }
+            Emitter::Area(_)
+            | Emitter::LuminousOpening(_)
+            | Emitter::Constant(_)
+            | Emitter::EnvMap(_)
+            | Emitter::Sun(_) => Support::Extended,
             Emitter::Point(_)
             | Emitter::Luminaire(_)
             | Emitter::Spot(_)
@@ -190,7 +200,8 @@ impl Emitter {
             | Emitter::Projector(_) => true,
             // uniform in a small cone: the weight L·Ω·cos is bounded
             Emitter::Sun(_) => true,
-            Emitter::Constant(_) | Emitter::EnvMap(_) => false,
+            // I(ω)/(A cos θ) grows towards grazing angles where the table does not vanish
+            Emitter::Constant(_) | Emitter::EnvMap(_) | Emitter::LuminousOpening(_) => false,
         }
     }
 
@@ -215,6 +226,18 @@ impl Emitter {
             Emitter::EnvMap(e) => e.integral() * PI * scene_radius * scene_radius,
             Emitter::Projector(e) => e.flux(),
             Emitter::Sun(e) => e.irradiance * PI * scene_radius * scene_radius,
+            Emitter::LuminousOpening(e) => e.flux(),
+        }
+    }
+
+    /// The shape an emitting surface belongs to (`area`, a nested `luminaire`); `None` for
+    /// lights without one.
+    #[inline]
+    pub fn shape(&self) -> Option<u32> {
+        match self {
+            Emitter::Area(e) => Some(e.shape),
+            Emitter::LuminousOpening(e) => Some(e.shape),
+            _ => None,
         }
     }
 }

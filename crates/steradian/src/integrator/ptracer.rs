@@ -36,7 +36,7 @@
 use glam::Vec2;
 
 use crate::bsdf::ShadingPoint;
-use crate::emitter::{Emitter, Support};
+use crate::emitter::Support;
 use crate::film::SplatBlock;
 use crate::sampling::PixelSampler;
 use crate::scene::Scene;
@@ -172,15 +172,15 @@ impl ParticleTracer {
         if emitter.support() == Support::Delta {
             return;
         }
-        match emitter {
-            Emitter::Area(e) => {
-                let ps = scene.shapes[e.shape as usize].sample_position(u);
+        match emitter.shape() {
+            Some(shape) => {
+                let ps = scene.shapes[shape as usize].sample_position(u);
                 if !crate::geometry::is_positive(ps.pdf_area) {
                     return;
                 }
                 let Some(c) = sensor.sample_direction(ps.p) else { return };
                 let cos = ps.n.dot(c.wi);
-                let le = e.radiance(c.wi, ps.n, ps.uv);
+                let le = emitter.radiance(c.wi, ps.n, ps.uv);
                 if cos <= 0.0 || le == Spectrum::ZERO {
                     return;
                 }
@@ -189,7 +189,7 @@ impl ParticleTracer {
                 }
             }
             // lights at infinity: a direction sampled from the camera
-            _ => {
+            None => {
                 let Some(origin) = sensor.pinhole() else { return };
                 let Some(es) = emitter.sample_direction(&scene.shapes, origin, u) else {
                     return;

@@ -1,5 +1,6 @@
 """Closed-form radiometry (float64): solid angles (sr), irradiance (W/m²), exitance, BRDF
-normalisations. Points are 3-sequences in metres, angles radians."""
+normalisations, transmittance and single scattering in media. Points are 3-sequences in
+metres, angles radians."""
 
 from typing import Sequence, Union
 
@@ -25,6 +26,9 @@ __all__ = [
     "sphere_solid_angle",
     "disk_on_axis_irradiance",
     "rect_parallel_corner_irradiance",
+    "beer_lambert",
+    "point_irradiance_through_slab",
+    "single_scattering_half_space",
 ]
 
 _Vec3 = Union[Sequence[float], npt.NDArray[np.floating]]
@@ -47,3 +51,8 @@ def disk_solid_angle(p: _Vec3, c: _Vec3, n: _Vec3, radius: float) -> float: ...
 def sphere_solid_angle(radius: float, d: float) -> float: ...
 def disk_on_axis_irradiance(radiance: float, radius: float, h: float) -> float: ...
 def rect_parallel_corner_irradiance(radiance: float, a: float, b: float, d: float) -> float: ...
+def beer_lambert(sigma_t: float, d: float) -> float: ...
+def point_irradiance_through_slab(
+    intensity: float, r: float, theta: float, sigma_t: float, thickness: float
+) -> float: ...
+def single_scattering_half_space(e: float, albedo: float, phase: float, mu0: float, mu: float) -> float: ...

@@ -94,3 +94,32 @@ def test_target_error_stops_the_meter_within_it():
     assert (np.abs(m.value - expected) <= 0.01 * expected).all(), (m.value, expected)
     with pytest.raises(ValueError, match="target-error"):
         steradian.load_file(DISK_METER).measure(target_error=2.0)
+
+
+def test_volpath_meter_reads_beer_lambert_through_a_slab():
+    """A point source seen through an absorbing slab (a null-bounded box) under `volpath`:
+    the irradiance meter reads I cos θ / r² · exp(−σ_t t / cos θ) within five standard errors
+    plus the shadow ray's offsets at the slab's faces."""
+    xml = """<scene version="3.0.0">
+  <integrator type="volpath"/>
+  <emitter type="point"><point name="position" x="0" y="0" z="1.5"/><rgb name="intensity" value="4"/></emitter>
+  <shape type="cube">
+    <transform name="to_world"><scale x="20" y="20" z="0.25"/><translate z="0.75"/></transform>
+    <bsdf type="null"/>
+    <medium type="homogeneous" name="interior">
+      <rgb name="albedo" value="0"/><rgb name="sigma_t" value="0.5, 1, 2"/>
+    </medium>
+  </shape>
+  <shape type="disk">
+    <transform name="to_world"><scale value="1e-4"/></transform>
+    <sensor type="irradiancemeter">
+      <film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/></film>
+    </sensor>
+  </shape>
+</scene>"""
+    m = steradian.load_string(xml).measure(spp=64, seed=1)
+    expected = np.array(
+        [radiometry.point_irradiance_through_slab(4.0, 1.5, 0.0, s, 0.5) for s in (0.5, 1.0, 2.0)]
+    )
+    assert np.allclose(expected[0], 4.0 / 2.25 * radiometry.beer_lambert(0.5, 0.5))
+    assert np.all(np.abs(m.value - expected) <= 5 * m.stderr + 5e-4 * expected), (m.value, expected)

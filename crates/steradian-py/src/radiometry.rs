@@ -138,11 +138,41 @@ fn rect_parallel_corner_irradiance(radiance: f64, a: f64, b: f64, d: f64) -> f64
     r::rect_parallel_corner_irradiance(radiance, a, b, d)
 }
 
+/// Beer–Lambert: the fraction of light crossing distance d (m) of extinction σ_t (1/m),
+/// T = exp(−σ_t d).
+#[pyfunction]
+fn beer_lambert(sigma_t: f64, d: f64) -> f64 {
+    r::beer_lambert(sigma_t, d)
+}
+
+/// Irradiance (W/m²) from a point source of intensity I (W/sr) at distance r (m) and incidence
+/// θ (rad), through an absorbing slab of thickness t (m) and extinction σ_t (1/m) parallel to
+/// the receiver: E = I cos θ / r² · exp(−σ_t t / cos θ).
+#[pyfunction]
+fn point_irradiance_through_slab(
+    intensity: f64,
+    r: f64,
+    theta: f64,
+    sigma_t: f64,
+    thickness: f64,
+) -> f64 {
+    r::point_irradiance_through_slab(intensity, r, theta, sigma_t, thickness)
+}
+
+/// Singly scattered radiance (W/(m²·sr)) leaving a homogeneous half-space under a collimated
+/// beam of normal irradiance E (W/m²) at incidence cos θ₀ = mu0, seen at cos θ = mu, albedo α,
+/// phase value p (1/sr): L₁ = α p E μ₀/(μ₀ + μ).
+#[pyfunction]
+fn single_scattering_half_space(e: f64, albedo: f64, phase: f64, mu0: f64, mu: f64) -> f64 {
+    r::single_scattering_half_space(e, albedo, phase, mu0, mu)
+}
+
 pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.setattr(
         "__doc__",
         "Closed-form radiometry (float64): solid angles (sr), irradiance (W/m²), \
-        exitance, BRDF normalisations. Points are 3-sequences in metres, angles radians.",
+        exitance, BRDF normalisations, transmittance and single scattering in media. Points \
+        are 3-sequences in metres, angles radians.",
     )?;
     m.add_function(wrap_pyfunction!(point_irradiance, m)?)?;
     m.add_function(wrap_pyfunction!(point_irradiance_at, m)?)?;
@@ -162,5 +192,8 @@ pub fn register(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(sphere_solid_angle, m)?)?;
     m.add_function(wrap_pyfunction!(disk_on_axis_irradiance, m)?)?;
     m.add_function(wrap_pyfunction!(rect_parallel_corner_irradiance, m)?)?;
+    m.add_function(wrap_pyfunction!(beer_lambert, m)?)?;
+    m.add_function(wrap_pyfunction!(point_irradiance_through_slab, m)?)?;
+    m.add_function(wrap_pyfunction!(single_scattering_half_space, m)?)?;
     Ok(())
 }

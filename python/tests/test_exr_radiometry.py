@@ -86,7 +86,7 @@ def test_brdf_normalisations():
 
 def test_every_function_is_documented_with_units():
     names = [n for n in dir(radiometry) if not n.startswith("_")]
-    assert len(names) == 18
+    assert len(names) == 21
     for name in names:
         doc = getattr(radiometry, name).__doc__
         assert doc and any(u in doc for u in ("sr", "W/m²", "W", "1/sr", "dimensionless")), name

@@ -138,8 +138,8 @@ fn rect_parallel_corner_irradiance(radiance: f64, a: f64, b: f64, d: f64) -> f64
     r::rect_parallel_corner_irradiance(radiance, a, b, d)
 }
 
-/// Beer–Lambert: the fraction of light crossing distance d (m) of extinction σ_t (1/m),
-/// T = exp(−σ_t d).
+/// Beer–Lambert: the fraction (dimensionless) of light crossing distance d (m) of extinction
+/// σ_t (1/m), T = exp(−σ_t d).
 #[pyfunction]
 fn beer_lambert(sigma_t: f64, d: f64) -> f64 {
     r::beer_lambert(sigma_t, d)

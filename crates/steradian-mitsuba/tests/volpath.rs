@@ -372,6 +372,18 @@ fn bad_media_are_located_errors() {
     std::fs::write(&header, &wrong).unwrap();
     let e = load_error(&grid(&header.display().to_string()));
     assert!(e.message.contains("VOL"), "{e}");
+    // a homogeneous medium takes a constvolume for a value, and refuses a grid
+    let load = |medium: &str| {
+        steradian_mitsuba::load_string(&shape(medium), Path::new("media.xml"), &data(""), &[])
+    };
+    let value = load("<medium type=\"homogeneous\" name=\"interior\"><rgb name=\"albedo\" value=\"0.3, 0.4, 0.5\"/></medium>").unwrap();
+    let volume = load("<medium type=\"homogeneous\" name=\"interior\"><volume type=\"constvolume\" name=\"albedo\"><rgb name=\"value\" value=\"0.3, 0.4, 0.5\"/></volume></medium>").unwrap();
+    assert_eq!(value.scene.media, volume.scene.media);
+    let e = load_error(&shape(
+        "<medium type=\"homogeneous\" name=\"interior\">\n<volume type=\"gridvolume\" name=\"sigma_t\"><string name=\"filename\" value=\"volpath-cloud.vol\"/></volume>\n</medium>",
+    ));
+    assert_eq!(e.pos.as_ref().map(|p| p.line), Some(6), "{e}");
+    assert!(e.message.contains("heterogeneous"), "{e}");
     // sensors in different media
     let e = load_error(
         "<scene version=\"3.0.0\">\n<integrator type=\"volpath\"/>\n<medium type=\"homogeneous\" id=\"a\"/>\n\

@@ -69,11 +69,10 @@ fn build_phase(node: &PluginNode) -> Result<PhaseFunction, LoadError> {
 
 /// `homogeneous` (`steradian::medium::Homogeneous`): `sigma_t`, `albedo`, `scale`,
 /// `sample_emitters`, a nested phase function.
-fn homogeneous(_: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
+fn homogeneous(b: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
     let p = &node.props;
-    let sigma_t =
-        p.get_spectrum("sigma_t")?.unwrap_or(Spectrum::splat(Homogeneous::DEFAULT_SIGMA_T));
-    let albedo = p.get_spectrum("albedo")?.unwrap_or(Spectrum::splat(Homogeneous::DEFAULT_ALBEDO));
+    let sigma_t = constant_param(b, node, "sigma_t", Homogeneous::DEFAULT_SIGMA_T)?;
+    let albedo = constant_param(b, node, "albedo", Homogeneous::DEFAULT_ALBEDO)?;
     let scale = p.get_float("scale")?.unwrap_or(Homogeneous::DEFAULT_SCALE);
     let sample_emitters =
         p.get_bool("sample_emitters")?.unwrap_or(Homogeneous::DEFAULT_SAMPLE_EMITTERS);
@@ -119,6 +118,49 @@ fn heterogeneous(b: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
         ));
     }
     Ok(Medium::Heterogeneous(Box::new(m)))
+}
+
+/// A homogeneous medium's `sigma_t` or `albedo`: a value, or (as Mitsuba also takes it) a
+/// nested `constvolume`, whose value is used; any other volume is an error at it (the medium
+/// is the same everywhere).
+fn constant_param(
+    b: &Builder,
+    node: &PluginNode,
+    name: &str,
+    default: f32,
+) -> Result<Spectrum, LoadError> {
+    let nested = node
+        .children
+        .iter()
+        .find(|c| c.node.tag == ObjectTag::Volume && c.name.as_deref() == Some(name));
+    let Some(c) = nested else {
+        return Ok(node.props.get_spectrum(name)?.unwrap_or(Spectrum::splat(default)));
+    };
+    if c.node.plugin_type != "constvolume" {
+        return Err(LoadError::at(
+            c.pos(),
+            format!(
+                "{}: a homogeneous medium's '{name}' is a value or a `constvolume`, not {} (use `heterogeneous`)",
+                node.desc(),
+                c.node.desc()
+            ),
+        ));
+    }
+    if node.props.contains(name) {
+        return Err(LoadError::at(
+            c.pos(),
+            format!("{}: '{name}' is given twice (a value and a volume)", node.desc()),
+        ));
+    }
+    c.mark_used();
+    let volume = lookup(VOLUMES, &c.node)?(b, &c.node)?;
+    c.node.check_all_used()?;
+    match volume.data {
+        VolumeData::Const(v) => Ok(v),
+        VolumeData::Grid(_) => {
+            Err(LoadError::at(c.pos(), format!("{}: '{name}' must be a constant", node.desc())))
+        }
+    }
 }
 
 /// Mitsuba's `has_spectral_extinction` (a boolean, default true) is read and has no effect:

@@ -86,6 +86,7 @@ class Scene:
         progress: Optional[_Progress] = None,
         time_limit: Optional[float] = None,
         target_error: Optional[float] = None,
+        batch: Optional[int] = None,
     ) -> Measurement: ...
     def measure_grid(
         self,
@@ -97,6 +98,7 @@ class Scene:
         progress: Optional[_Progress] = None,
         time_limit: Optional[float] = None,
         target_error: Optional[float] = None,
+        batch: Optional[int] = None,
     ) -> Dict[str, Any]: ...
     def plan(
         self,

@@ -123,3 +123,17 @@ def test_volpath_meter_reads_beer_lambert_through_a_slab():
     )
     assert np.allclose(expected[0], 4.0 / 2.25 * radiometry.beer_lambert(0.5, 0.5))
     assert np.all(np.abs(m.value - expected) <= 5 * m.stderr + 5e-4 * expected), (m.value, expected)
+
+
+def test_sobol_batches_keep_the_reading_and_its_error_bar():
+    """Samples as Sobol batches (`batch=`): the disk meter still reads the closed form within
+    five of its (smaller) standard errors; `spp` counts the batches."""
+    expected = np.array([radiometry.disk_on_axis_irradiance(L, 0.8, 1.5) for L in (1.0, 2.0, 4.0)])
+    plain = steradian.load_file(DISK_METER).measure(spp=4096, seed=4)
+    batched = steradian.load_file(DISK_METER).measure(spp=64, seed=4, batch=64)
+    assert batched.spp == 64
+    assert (batched.stderr > 0).all() and (batched.stderr < plain.stderr).all()
+    z = (batched.value - expected) / batched.stderr
+    assert np.abs(z).max() < 5, z
+    with pytest.raises(ValueError, match="batch"):
+        steradian.load_file(DISK_METER).measure(spp=4, batch=0)

@@ -44,6 +44,12 @@ pub struct MeasureArgs {
     /// then, with its standard error.
     #[arg(long, value_name = "SECONDS")]
     time_limit: Option<f64>,
+    /// Each sample is the mean of N Owen-scrambled Sobol points under a scramble of its own
+    /// (randomised quasi-Monte Carlo): the samples stay independent, so the standard errors
+    /// stay honest, and each integrates far better than one point. --spp then counts these
+    /// replicates (spp × N points per reading). Default 1: one independent point per sample.
+    #[arg(long, value_name = "N")]
+    batch: Option<u32>,
 }
 
 pub fn run(args: MeasureArgs) -> Result<(), CliError> {
@@ -53,9 +59,13 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         spp: args.spp,
         threads: args.threads,
         target_error: args.target_error,
+        batch: args.batch,
         ..Default::default()
     }
     .validate()?;
+    if let Some(n) = args.batch.filter(|&n| n > 1) {
+        eprintln!("each sample: the mean of {n} Sobol points under its own scramble");
+    }
     let scene = steradian_mitsuba::load_file(&args.scene, &defines)?;
     for w in &scene.warnings {
         eprintln!("{w}");
@@ -72,6 +82,7 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         sensor: Some(sensor),
         threads: args.threads,
         time_limit,
+        batch: args.batch,
         ..Default::default()
     };
     let id = if s.id.is_empty() { format!("#{sensor}") } else { s.id.clone() };

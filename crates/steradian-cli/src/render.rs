@@ -292,6 +292,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         scene_digest,
         time_limit,
         target_error: args.target_error,
+        batch: None,
     };
     let out = render(&scene, &opts).map_err(|e| match (e, &args.resume) {
         (RenderError::Resume(e), Some(path)) => {

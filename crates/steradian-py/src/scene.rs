@@ -140,14 +140,13 @@ impl Scene {
     }
 
     /// Renders sensor `sensor` as `measure` and `measure_grid` read it: (spp, seed, sensor,
-    /// threads), interruptible, with a time limit and a target error.
+    /// threads), interruptible, with a time limit, a target error and Sobol batches.
     fn render_meter(
         &self,
         py: Python<'_>,
         (spp, seed, sensor, threads): (Option<u32>, Option<u64>, usize, Option<usize>),
         progress: Option<Py<PyAny>>,
-        time_limit: Option<f64>,
-        target_error: Option<f64>,
+        (time_limit, target_error, batch): (Option<f64>, Option<f64>, Option<u32>),
     ) -> PyResult<RenderOutput> {
         let time_limit = time_limit_arg(time_limit)?;
         let scene = &*self.inner;
@@ -161,6 +160,7 @@ impl Scene {
                 progress: Some(report),
                 time_limit,
                 target_error,
+                batch,
                 ..Default::default()
             };
             render(scene, &opts)
@@ -300,10 +300,12 @@ impl Scene {
     /// for a camera the image mean. Meters use independent random numbers, so the error is
     /// a proper standard error. Same options as `render`; `seed=None` keeps the scene's seed.
     /// `target_error=E` stops once the reading is within E of its value at 95 % confidence
-    /// (1.96 standard errors), `spp` then being the most samples taken.
+    /// (1.96 standard errors), `spp` then being the most samples taken. `batch=N` (meters)
+    /// makes each sample the mean of N Sobol points under a scramble of its own: the error
+    /// stays a proper standard error and falls far faster; `spp` counts these samples.
     #[pyo3(
-        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None),
-        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None)"
+        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None, batch=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None, batch=None)"
     )]
     fn measure(
         &self,
@@ -315,14 +317,14 @@ impl Scene {
         progress: Option<Py<PyAny>>,
         time_limit: Option<f64>,
         target_error: Option<f64>,
+        batch: Option<u32>,
     ) -> PyResult<Measurement> {
         let sensor = self.sensor(sensor)?;
         let out = self.render_meter(
             py,
             (spp, seed, sensor, threads),
             progress,
-            time_limit,
-            target_error,
+            (time_limit, target_error, batch),
         )?;
         let quantity = self.inner.scene.sensors[sensor].quantity();
         let m = steradian::render::Measurement::from_render(&out, sensor, quantity);
@@ -335,8 +337,8 @@ impl Scene {
     /// `min_max` (min/max), each a `(value, stderr)` tuple, and `target_reached`. Same options as `measure` (a target
     /// error applies to every cell).
     #[pyo3(
-        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None),
-        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None)"
+        signature = (spp=None, seed=Some(0), sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None, batch=None),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, threads=None, progress=None, time_limit=None, target_error=None, batch=None)"
     )]
     #[allow(clippy::too_many_arguments)]
     fn measure_grid<'py>(
@@ -349,6 +351,7 @@ impl Scene {
         progress: Option<Py<PyAny>>,
         time_limit: Option<f64>,
         target_error: Option<f64>,
+        batch: Option<u32>,
     ) -> PyResult<Bound<'py, PyDict>> {
         let sensor = self.sensor(sensor)?;
         let SensorKind::Workplane(w) = &self.inner.scene.sensors[sensor].kind else {
@@ -359,8 +362,7 @@ impl Scene {
             py,
             (spp, seed, sensor, threads),
             progress,
-            time_limit,
-            target_error,
+            (time_limit, target_error, batch),
         )?;
         let g = GridReading::from_render(&out, unit);
         let d = PyDict::new(py);

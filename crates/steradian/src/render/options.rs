@@ -65,7 +65,16 @@ pub struct RenderOptions<'a> {
     /// (`target_error.rs`); `spp` is then the most samples taken (`MAX_SPP_FOR_TARGET` where
     /// it is unset).
     pub target_error: Option<f64>,
+    /// Meters and work planes only: each sample is the mean of this many Owen-scrambled Sobol
+    /// points under a scramble of its own (a randomised quasi-Monte Carlo replicate), so the
+    /// samples stay independent (their standard error honest) while each integrates far
+    /// better than one point (`block.rs`); `spp` then counts replicates and the points taken
+    /// are spp × batch. `None` or 1: one independent point per sample.
+    pub batch: Option<u32>,
 }
+
+/// The largest `batch`: one Sobol epoch.
+pub const MAX_BATCH: u32 = 1 << 16;
 
 impl RenderOptions<'_> {
     /// Checks what can be checked without the scene (the command line does so before a slow
@@ -81,6 +90,12 @@ impl RenderOptions<'_> {
             return Err(RenderError::BadOption {
                 option: "target-error",
                 reason: "must be a fraction between 0 and 1 (0.01 = 1 %)",
+            });
+        }
+        if self.batch.is_some_and(|b| !(1..=MAX_BATCH).contains(&b)) {
+            return Err(RenderError::BadOption {
+                option: "batch",
+                reason: "must be between 1 and 65536 points per sample",
             });
         }
         if self.time_limit.is_some_and(|t| t.is_zero()) {
@@ -229,6 +244,8 @@ pub(super) struct Plan<'a> {
     pub spp: u32,
     /// The sensor is a meter: samples do not depend on the film position.
     pub meter: bool,
+    /// Sobol points per sample (meters only; 1 = one independent point).
+    pub batch: u32,
     /// The sensor's film, cleared.
     pub film: Film,
     pub quantity: PixelQuantity,
@@ -298,11 +315,23 @@ impl<'a> Plan<'a> {
             }
             film = film.with_aov_layers(layers);
         }
+        let batch = match (opts.batch, meter) {
+            (None | Some(1), _) => 1,
+            (Some(b), true) => b,
+            (Some(_), false) => {
+                return Err(RenderError::BadOption {
+                    option: "batch",
+                    reason: "applies to meters and work planes (a camera's pixels already take \
+                             Sobol points)",
+                })
+            }
+        };
         Ok(Plan {
             sensor,
             sampler,
             spp: sampler.sample_count,
             meter,
+            batch,
             film,
             quantity: opts.quantity,
         })

@@ -8,12 +8,12 @@ points), the time each would need for 0.2 % per point (time x (rel. se / 0.002)^
 error falls as 1/sqrt(time)), their ratio, and whether the two averages agree.
 
     pip install pyradiance==1.3.1 numpy
-    python3 benches/radiance/work_plane_vs_radiance.py [--replicates 4] [--spp 4096]
-        [--batch 64] [--no-build]
+    python3 benches/radiance/work_plane_vs_radiance.py [--replicates 4] [--spp N] [--batch N]
+        [--no-build]
 
-`--batch N` has steradian average each sample over N Sobol points under a scramble of its own
-(`steradian measure --batch`); `--spp` is then the number of such samples, and the points
-per cell are spp × N.
+steradian measures as the scene says (64 samples, each the mean of 64 Sobol points under a
+scramble of its own); `--spp` and `--batch` override (`steradian measure --batch`; `--batch 1`
+is one independent point per sample).
 
 `room.py` and `run_radiance.py` are the peer harness's (they write the same room for
 Radiance: `ies2rad` on the same synthetic IES file, the same reflectances and grid).
@@ -40,8 +40,8 @@ TARGET = 0.002  # the issue's per-point relative error
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--replicates", type=int, default=4, help="Radiance runs (its standard error)")
-    ap.add_argument("--spp", type=int, default=4096, help="steradian samples per point")
-    ap.add_argument("--batch", type=int, default=1, help="Sobol points per steradian sample")
+    ap.add_argument("--spp", type=int, default=None, help="steradian samples per point (default: the scene's, 64)")
+    ap.add_argument("--batch", type=int, default=None, help="Sobol points per steradian sample (default: the scene's, 64)")
     ap.add_argument("--work", type=Path, default=Path("/tmp/steradian-radiance"))
     ap.add_argument("--no-build", action="store_true")
     args = ap.parse_args()
@@ -65,8 +65,8 @@ def main():
     # steradian: the whole process, one thread
     t0 = time.perf_counter()
     out = subprocess.run(
-        [str(steradian), "measure", str(scene), "--json", "--threads", "1", "--spp", str(args.spp),
-         "--seed", "1", "--batch", str(args.batch)],
+        [str(steradian), "measure", str(scene), "--json", "--threads", "1", "--seed", "1"]
+        + (["--spp", str(args.spp)] if args.spp else []) + (["--batch", str(args.batch)] if args.batch else []),
         check=True, capture_output=True, text=True).stdout
     ster_time = time.perf_counter() - t0
     d = json.loads(out)
@@ -87,7 +87,8 @@ def main():
 
     cpu = next((l.split(":", 1)[1].strip() for l in open("/proc/cpuinfo") if l.startswith("model name")), "?")
     print(f"# {time.strftime('%Y-%m-%d %H:%M UTC', time.gmtime())}, {cpu}, one thread each; "
-          f"Radiance {args.replicates} runs of mc10, steradian {args.spp} spp × {args.batch} points")
+          f"Radiance {args.replicates} runs of mc10, steradian {args.spp or 'scene'} spp × "
+          f"{args.batch or 'scene'} points")
     ra, rs, rt = summary("Radiance", rad_lux, rad_se, rad_time)
     sa, ss, st = summary("steradian", ster_lux.ravel(), ster_se.ravel(), ster_time)
     z = (sa - ra) / np.hypot(rs, ss)

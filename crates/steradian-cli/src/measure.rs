@@ -63,9 +63,7 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         ..Default::default()
     }
     .validate()?;
-    if let Some(n) = args.batch.filter(|&n| n > 1) {
-        eprintln!("each sample: the mean of {n} Sobol points under its own scramble");
-    }
+
     let scene = steradian_mitsuba::load_file(&args.scene, &defines)?;
     for w in &scene.warnings {
         eprintln!("{w}");
@@ -86,6 +84,13 @@ pub fn run(args: MeasureArgs) -> Result<(), CliError> {
         ..Default::default()
     };
     let id = if s.id.is_empty() { format!("#{sensor}") } else { s.id.clone() };
+    let own_batch = match &s.kind {
+        SensorKind::Workplane(w) => w.batch,
+        _ => 1,
+    };
+    if let Some(n) = args.batch.or(Some(own_batch)).filter(|&n| n > 1) {
+        eprintln!("each sample: the mean of {n} Sobol points under a scramble of its own");
+    }
     if let SensorKind::Workplane(w) = &s.kind {
         let out = render(&scene, &opts)?;
         if out.time_limited {

@@ -3,7 +3,7 @@
 //! spread of readings over seeds matches the reported standard errors), integrate the work
 //! plane of `scenes/lighting_room.xml` with a much smaller error than independent points at
 //! the same number of points, give the same reading on any thread count, and are refused
-//! where they mean nothing (cameras) or are out of range.
+//! where they mean nothing (cameras) or are out of range; a work plane carries its own `batch`.
 
 use std::path::Path;
 
@@ -100,4 +100,31 @@ fn batches_are_for_meters_and_in_range() {
     let e =
         render(&cam, &RenderOptions { spp: Some(1), batch: Some(4), ..Default::default() }).err();
     assert!(matches!(e, Some(RenderError::BadOption { option: "batch", .. })), "{e:?}");
+}
+
+/// A work plane's own `batch` (the lighting room's is 64) applies unless the options give
+/// one; it must be 1 to 65536, at the parameter.
+#[test]
+fn a_work_plane_carries_its_batch() {
+    let job = room();
+    let steradian::sensor::SensorKind::Workplane(w) = &job.scene.sensors[0].kind else {
+        panic!("the room's first sensor is its work plane")
+    };
+    assert_eq!(w.batch, 64);
+    // the scene's batch against one given: different numbers, same scene
+    assert_ne!(grid(&job, 2, 1, 5, 2).0, {
+        let out = render(
+            &job,
+            &RenderOptions { spp: Some(2), seed: Some(5), threads: Some(2), ..Default::default() },
+        )
+        .unwrap();
+        out.film().develop().data.chunks_exact(3).map(|p| p[1] as f64).collect::<Vec<_>>()
+    });
+    for bad in ["0", "70000"] {
+        let xml = format!("<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<sensor type=\"workplane\">\n<integer name=\"batch\" value=\"{bad}\"/>\n</sensor>\n</scene>");
+        let e = steradian_mitsuba::load_string(&xml, Path::new("w.xml"), Path::new("."), &[])
+            .unwrap_err();
+        assert_eq!(e.pos.as_ref().map(|p| p.line), Some(4), "{e}");
+        assert!(e.message.contains("batch"), "{e}");
+    }
 }

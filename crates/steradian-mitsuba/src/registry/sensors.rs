@@ -278,7 +278,14 @@ fn workplane(
         b.daylight_planes.borrow_mut().push((node.pos.clone(), node.desc()));
     }
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
-    let w = Workplane::new(to_world, nx, ny, mode, unit).map_err(at_param(node))?;
+    let mut w = Workplane::new(to_world, nx, ny, mode, unit).map_err(at_param(node))?;
+    w.batch = positive_int(node, "batch", Workplane::DEFAULT_BATCH as i64)?;
+    if w.batch > steradian::render::MAX_BATCH {
+        return Err(LoadError::at(
+            p.position("batch").unwrap_or(&node.pos),
+            format!("{}: 'batch' must be at most {}", node.desc(), steradian::render::MAX_BATCH),
+        ));
+    }
     Ok(SensorKind::Workplane(w))
 }
 

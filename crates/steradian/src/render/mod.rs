@@ -37,7 +37,7 @@ pub use checkpoint::Checkpoint;
 pub use driver::{pass_bounds, plan, render, RenderPlan};
 pub use grid_reading::{Estimate, GridReading, GridStats};
 pub use measure::{measure, Measurement};
-pub use options::{Progress, RenderError, RenderOptions, RenderOutput};
+pub use options::{Progress, RenderError, RenderOptions, RenderOutput, MAX_BATCH};
 pub use quantity::PixelQuantity;
 pub use sums::{digest_inputs, RenderSums, SumsError, SumsHeader};
 pub use target_error::{

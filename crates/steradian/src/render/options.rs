@@ -315,7 +315,12 @@ impl<'a> Plan<'a> {
             }
             film = film.with_aov_layers(layers);
         }
-        let batch = match (opts.batch, meter) {
+        // the options' batch, else a work plane's own
+        let own = match &sensor.kind {
+            crate::sensor::SensorKind::Workplane(w) if w.batch > 1 => Some(w.batch),
+            _ => None,
+        };
+        let batch = match (opts.batch.or(own), meter) {
             (None | Some(1), _) => 1,
             (Some(b), true) => b,
             (Some(_), false) => {

@@ -18,7 +18,7 @@ use steradian::Spectrum;
 
 use super::{at, at_param, choice, lookup, required_string, Builder, Plugins};
 use crate::error::LoadError;
-use crate::tree::{ObjectTag, PluginNode};
+use crate::tree::{Child, ObjectTag, PluginNode};
 
 type BuildMedium = fn(&Builder, &PluginNode) -> Result<Medium, LoadError>;
 
@@ -70,14 +70,10 @@ fn build_phase(node: &PluginNode) -> Result<PhaseFunction, LoadError> {
 /// `homogeneous` (`steradian::medium::Homogeneous`): `sigma_t`, `albedo`, `scale`,
 /// `sample_emitters`, a nested phase function.
 fn homogeneous(b: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
-    let p = &node.props;
     let sigma_t = constant_param(b, node, "sigma_t", Homogeneous::DEFAULT_SIGMA_T)?;
     let albedo = constant_param(b, node, "albedo", Homogeneous::DEFAULT_ALBEDO)?;
-    let scale = p.get_float("scale")?.unwrap_or(Homogeneous::DEFAULT_SCALE);
-    let sample_emitters =
-        p.get_bool("sample_emitters")?.unwrap_or(Homogeneous::DEFAULT_SAMPLE_EMITTERS);
-    let phase = nested_phase(node)?;
-    accept_spectral_extinction(node)?;
+    let (scale, sample_emitters, phase) =
+        shared_parameters(node, Homogeneous::DEFAULT_SCALE, Homogeneous::DEFAULT_SAMPLE_EMITTERS)?;
     let m =
         Homogeneous::new(sigma_t, albedo, scale, phase, sample_emitters).map_err(at_param(node))?;
     Ok(Medium::Homogeneous(m))
@@ -87,14 +83,13 @@ fn homogeneous(b: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
 /// nested `<volume>` or a value, which Mitsuba makes a `constvolume` over the unit cube),
 /// `scale`, `sample_emitters`, a nested phase function.
 fn heterogeneous(b: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
-    let p = &node.props;
     let sigma_t = volume_param(b, node, "sigma_t", Heterogeneous::DEFAULT_SIGMA_T)?;
     let albedo = volume_param(b, node, "albedo", Heterogeneous::DEFAULT_ALBEDO)?;
-    let scale = p.get_float("scale")?.unwrap_or(Heterogeneous::DEFAULT_SCALE);
-    let sample_emitters =
-        p.get_bool("sample_emitters")?.unwrap_or(Heterogeneous::DEFAULT_SAMPLE_EMITTERS);
-    let phase = nested_phase(node)?;
-    accept_spectral_extinction(node)?;
+    let (scale, sample_emitters, phase) = shared_parameters(
+        node,
+        Heterogeneous::DEFAULT_SCALE,
+        Heterogeneous::DEFAULT_SAMPLE_EMITTERS,
+    )?;
     let m = Heterogeneous::new(sigma_t, albedo, scale, phase, sample_emitters).map_err(|e| {
         // a volume's error points at the volume
         match node.child(e.param) {
@@ -129,23 +124,60 @@ fn constant_param(
     name: &str,
     default: f32,
 ) -> Result<Spectrum, LoadError> {
-    let nested = node
-        .children
-        .iter()
-        .find(|c| c.node.tag == ObjectTag::Volume && c.name.as_deref() == Some(name));
-    let Some(c) = nested else {
-        return Ok(node.props.get_spectrum(name)?.unwrap_or(Spectrum::splat(default)));
-    };
-    if c.node.plugin_type != "constvolume" {
-        return Err(LoadError::at(
+    let only_constant = |c: &Child| {
+        if c.node.plugin_type == "constvolume" {
+            return Ok(());
+        }
+        Err(LoadError::at(
             c.pos(),
             format!(
                 "{}: a homogeneous medium's '{name}' is a value or a `constvolume`, not {} (use `heterogeneous`)",
                 node.desc(),
                 c.node.desc()
             ),
-        ));
+        ))
+    };
+    match nested_volume(b, node, name, only_constant)? {
+        None => Ok(node.props.get_spectrum(name)?.unwrap_or(Spectrum::splat(default))),
+        Some(Volume { data: VolumeData::Const(v), .. }) => Ok(v),
+        Some(_) => {
+            Err(LoadError::at(&node.pos, format!("{}: '{name}' must be a constant", node.desc())))
+        }
     }
+}
+
+/// What both media read besides their coefficients: `scale` and `sample_emitters` (with the
+/// plugin's defaults), the nested phase function, and Mitsuba's `has_spectral_extinction` (a
+/// boolean, default true), read and without effect: steradian's free flights are unbiased
+/// either way (spectral MIS, `steradian::medium`), and a grey σ_t is recognised from its values.
+fn shared_parameters(
+    node: &PluginNode,
+    default_scale: f32,
+    default_sample_emitters: bool,
+) -> Result<(f32, bool, PhaseFunction), LoadError> {
+    let p = &node.props;
+    let scale = p.get_float("scale")?.unwrap_or(default_scale);
+    let sample_emitters = p.get_bool("sample_emitters")?.unwrap_or(default_sample_emitters);
+    let phase = nested_phase(node)?;
+    p.get_bool("has_spectral_extinction")?;
+    Ok((scale, sample_emitters, phase))
+}
+
+/// The volume a medium gives for parameter `name` as a nested `<volume name="...">` (or a
+/// `<ref>` to one), built, or `None`; `accept` may refuse its type first. A parameter given
+/// both as a value and as a volume is an error at the volume.
+fn nested_volume(
+    b: &Builder,
+    node: &PluginNode,
+    name: &str,
+    accept: impl Fn(&Child) -> Result<(), LoadError>,
+) -> Result<Option<Volume>, LoadError> {
+    let nested = node
+        .children
+        .iter()
+        .find(|c| c.node.tag == ObjectTag::Volume && c.name.as_deref() == Some(name));
+    let Some(c) = nested else { return Ok(None) };
+    accept(c)?;
     if node.props.contains(name) {
         return Err(LoadError::at(
             c.pos(),
@@ -155,19 +187,7 @@ fn constant_param(
     c.mark_used();
     let volume = lookup(VOLUMES, &c.node)?(b, &c.node)?;
     c.node.check_all_used()?;
-    match volume.data {
-        VolumeData::Const(v) => Ok(v),
-        VolumeData::Grid(_) => {
-            Err(LoadError::at(c.pos(), format!("{}: '{name}' must be a constant", node.desc())))
-        }
-    }
-}
-
-/// Mitsuba's `has_spectral_extinction` (a boolean, default true) is read and has no effect:
-/// steradian's free flights are unbiased either way (spectral MIS, `steradian::medium`), and a
-/// grey σ_t is recognised from its values.
-fn accept_spectral_extinction(node: &PluginNode) -> Result<(), LoadError> {
-    node.props.get_bool("has_spectral_extinction").map(|_| ())
+    Ok(Some(volume))
 }
 
 /// A medium's volume parameter: a nested `<volume name="...">` (or a `<ref>` to one), else a
@@ -179,20 +199,7 @@ fn volume_param(
     name: &str,
     default: f32,
 ) -> Result<Volume, LoadError> {
-    let nested = node
-        .children
-        .iter()
-        .find(|c| c.node.tag == ObjectTag::Volume && c.name.as_deref() == Some(name));
-    if let Some(c) = nested {
-        if node.props.contains(name) {
-            return Err(LoadError::at(
-                c.pos(),
-                format!("{}: '{name}' is given twice (a value and a volume)", node.desc()),
-            ));
-        }
-        c.mark_used();
-        let volume = lookup(VOLUMES, &c.node)?(b, &c.node)?;
-        c.node.check_all_used()?;
+    if let Some(volume) = nested_volume(b, node, name, |_| Ok(()))? {
         return Ok(volume);
     }
     let v = node.props.get_spectrum(name)?.unwrap_or(Spectrum::splat(default));

@@ -215,31 +215,16 @@ fn build_luminous_opening(
             ),
         ));
     }
-    let table = read_intensity_table(b, node)?;
+    let luminaire = read_luminaire(b, node)?;
     let p = &node.props;
-    let scale = p.get_float("scale")?.unwrap_or(Luminaire::DEFAULT_SCALE);
-    let color = p.get_spectrum("color")?.unwrap_or(Spectrum::splat(Luminaire::DEFAULT_COLOR));
-    let per_candela = from_photometric(scale, color).map_err(|e| {
-        let name = if scale.is_finite() && scale >= 0.0 { "color" } else { "scale" };
-        LoadError::at(p.position(name).unwrap_or(&node.pos), format!("{}: {name} {e}", node.desc()))
-    })?;
-    let rotation = p.get_transform("to_world")?.unwrap_or_default();
-    if rotation.translation() != Vec3::ZERO {
+    if luminaire.position != Vec3::ZERO {
         return Err(LoadError::at(
-            p.position("to_world").unwrap_or(&node.pos),
+            p.position("to_world").or(p.position("position")).unwrap_or(&node.pos),
             format!("{}: in a shape, to_world only turns the photometric frame (the shape places the opening): no translation", node.desc()),
         ));
     }
-    let opening = LuminousOpening::new(
-        shape,
-        geometry.surface_area(),
-        rotation.linear(),
-        std::sync::Arc::new(table),
-        per_candela,
-    )
-    .map_err(|m| {
-        LoadError::at(p.position("to_world").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
-    })?;
+    let opening =
+        LuminousOpening::new(shape, geometry.surface_area(), luminaire).map_err(at(node))?;
     node.check_all_used()?;
     Ok(Emitter::LuminousOpening(opening))
 }
@@ -275,13 +260,18 @@ fn read_intensity_table(
 }
 
 fn build_luminaire(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+    read_luminaire(b, node).map(Emitter::Luminaire)
+}
+
+/// A `luminaire`'s parameters (`steradian::emitter::Luminaire`), at the scene level or in a
+/// shape.
+fn read_luminaire(b: &super::Builder, node: &PluginNode) -> Result<Luminaire, LoadError> {
     let p = &node.props;
     let table = read_intensity_table(b, node)?;
     let scale = p.get_float("scale")?.unwrap_or(Luminaire::DEFAULT_SCALE);
     let color = p.get_spectrum("color")?.unwrap_or(Spectrum::splat(Luminaire::DEFAULT_COLOR));
     let to_world = position_or_to_world(node)?;
-    let luminaire = Luminaire::new(&to_world, table, scale, color).map_err(at_param(node))?;
-    Ok(Emitter::Luminaire(luminaire))
+    Luminaire::new(&to_world, table, scale, color).map_err(at_param(node))
 }
 
 /// The `envmap` emitter (parameters and defaults: `steradian::emitter::EnvironmentMap`).

@@ -73,8 +73,8 @@ impl Luminaire {
         if !(rotation.transpose() * rotation).abs_diff_eq(Mat3::IDENTITY, 1e-4) {
             return Err(ParamError::new(
                 "to_world",
-                "to_world of a luminaire must be a rotation and a translation (a point source \
-                 has no size to scale)",
+                "to_world of a luminaire must be a rotation and a translation (its size is the \
+                 file's, or the shape's it is nested in, not to_world's)",
             ));
         }
         Ok(Luminaire {

@@ -3,7 +3,7 @@
 //!
 //! Parameters are the `luminaire`'s (`luminaire.rs`: `filename`, `scale`, `color`, and
 //! `to_world`, here a rotation only: it turns the photometric frame, nadir −z and C0 towards
-//! +x; the shape places the opening). The shape must be flat (`rectangle` or `disk`), of area
+//! +x; the shape places the opening), and it is built as that luminaire is. The shape must be flat (`rectangle` or `disk`), of area
 //! A; it emits from its front side (towards its normal), as `area` does, the radiance
 //!   L(ω) = I(ω) / (A cos θ),   cos θ = n·ω > 0,
 //! so that the opening's intensity ∫_A L cos θ dA is the table's I(ω) in every direction of
@@ -13,13 +13,10 @@
 //! the shape as `area` does; emission (for `ptracer`) draws a point uniformly on the opening
 //! and a direction by the table's flux, with weight I(ω)/p(ω).
 
-use std::sync::Arc;
+use glam::{Vec2, Vec3};
 
-use glam::{Mat3, Vec2, Vec3};
-
-use super::{EmitterSample, Support};
+use super::{EmitterSample, Luminaire, Support};
 use crate::geometry::{is_positive, SurfacePoint};
-use crate::photometry::IntensityTable;
 use crate::shape::{Shape, UvRequest};
 use crate::Spectrum;
 
@@ -27,46 +24,20 @@ use crate::Spectrum;
 pub struct LuminousOpening {
     /// Index of the emitting shape in the scene.
     pub shape: u32,
-    /// World to luminaire frame (a rotation).
-    to_local: Mat3,
-    /// Luminaire frame to world.
-    to_world: Mat3,
-    table: Arc<IntensityTable>,
-    /// W/sr per cd per channel, divided by the opening's area A (m²).
-    per_candela_per_area: Spectrum,
-    /// W/sr per cd per channel.
-    per_candela: Spectrum,
+    /// The luminaire's intensity distribution, turned (its position is unused: the shape
+    /// places the opening).
+    luminaire: Luminaire,
     /// The opening's area, m².
     area: f32,
 }
 
 impl LuminousOpening {
-    /// The opening of area `area` (m²) of shape `shape`, its photometric frame turned by
-    /// `rotation`, emitting `per_candela` W/sr per candela of `table`.
-    pub fn new(
-        shape: u32,
-        area: f32,
-        rotation: Mat3,
-        table: Arc<IntensityTable>,
-        per_candela: Spectrum,
-    ) -> Result<LuminousOpening, String> {
+    /// The opening of area `area` (m²) of shape `shape`, emitting `luminaire`'s intensities.
+    pub fn new(shape: u32, area: f32, luminaire: Luminaire) -> Result<LuminousOpening, String> {
         if !(area.is_finite() && area > 0.0) {
             return Err(format!("the luminous opening's area must be positive, got {area} m²"));
         }
-        if !(rotation.transpose() * rotation).abs_diff_eq(Mat3::IDENTITY, 1e-4) {
-            return Err("to_world of a luminaire in a shape must be a rotation (the shape places \
-                        and sizes the opening)"
-                .into());
-        }
-        Ok(LuminousOpening {
-            shape,
-            to_local: rotation.transpose(),
-            to_world: rotation,
-            table,
-            per_candela_per_area: per_candela / area,
-            per_candela,
-            area,
-        })
+        Ok(LuminousOpening { shape, luminaire, area })
     }
 
     /// Radiance leaving the opening at a point with normal `n` towards world direction `wo`
@@ -77,7 +48,7 @@ impl LuminousOpening {
         if !is_positive(cos) {
             return Spectrum::ZERO;
         }
-        self.per_candela_per_area * (self.table.eval(self.to_local * wo) / cos)
+        self.luminaire.intensity(wo) / (self.area * cos)
     }
 
     #[inline]
@@ -104,10 +75,10 @@ impl LuminousOpening {
         shapes[self.shape as usize].pdf_direction(p, light)
     }
 
-    /// Radiant flux towards the front hemisphere of a shape with normal `n`, at most the
-    /// table's whole flux (used only to choose among lights by power: the whole flux).
+    /// Radiant flux of the table, W per channel (used only to choose among lights by power:
+    /// the part towards the back, which the opening does not emit, is counted too).
     pub fn flux(&self) -> Spectrum {
-        self.per_candela * self.table.flux() as f32
+        self.luminaire.flux()
     }
 
     /// An emission direction (world) from a point of the opening with normal `n`, drawn by
@@ -115,12 +86,10 @@ impl LuminousOpening {
     /// `pdf_area` the density of the point (1/m²); `None` towards the back.
     #[inline]
     pub fn sample_emission(&self, n: Vec3, pdf_area: f32, u: Vec2) -> Option<(Vec3, Spectrum)> {
-        let (local, pdf) = self.table.sample(u)?;
-        let d = self.to_world * local;
+        let (d, weight) = self.luminaire.sample_emission(u)?;
         if !is_positive(n.dot(d)) || !is_positive(pdf_area) {
             return None;
         }
-        let weight = self.per_candela * (self.table.eval(local) / (pdf * self.area * pdf_area));
-        Some((d, weight))
+        Some((d, weight / (self.area * pdf_area)))
     }
 }

@@ -148,26 +148,16 @@ impl VolPathTracer {
                         let u2 = sampler.next_2d();
                         let sample_emitters = medium_ref.sample_emitters();
                         if sample_emitters {
-                            if let Some(es) = scene.sample_emitter_direction(p, u_light) {
-                                let f = phase.eval(wo, es.wi);
-                                if f > 0.0 {
-                                    let tr = scene.transmittance(
-                                        p,
-                                        Vec3::ZERO,
-                                        es.wi,
-                                        es.dist,
-                                        medium,
-                                        sampler,
-                                    );
-                                    let w = match es.support {
-                                        Support::Delta => 1.0,
-                                        Support::Extended => {
-                                            power_heuristic(es.pdf, phase.pdf(wo, es.wi))
-                                        }
-                                    };
-                                    result += throughput(beta, ratio) * tr * es.weight * (f * w);
-                                }
-                            }
+                            let light = next_event(
+                                scene,
+                                (p, Vec3::ZERO),
+                                u_light,
+                                sampler,
+                                |_| medium,
+                                |wi| Spectrum::splat(phase.eval(wo, wi)),
+                                |wi| phase.pdf(wo, wi),
+                            );
+                            result += throughput(beta, ratio) * light;
                         }
                         let ps = phase.sample(wo, u1, u2);
                         if !is_positive(ps.pdf) {
@@ -223,22 +213,19 @@ impl VolPathTracer {
 
             let sample_lights = bsdf.has_smooth_lobe() && depth + 1 < max_depth;
             if sample_lights {
-                if let Some(es) = scene.sample_emitter_direction(si.p, u_light) {
-                    let wi = si.to_local(es.wi);
-                    let f = bsdf.eval(&sp, wo, wi) * wi.z.abs();
-                    if f != Spectrum::ZERO {
-                        let shadow_medium = scene.medium_after(&si, es.wi, medium);
-                        let tr =
-                            scene.transmittance(si.p, si.n, es.wi, es.dist, shadow_medium, sampler);
-                        if tr != Spectrum::ZERO {
-                            let w = match es.support {
-                                Support::Delta => 1.0,
-                                Support::Extended => power_heuristic(es.pdf, bsdf.pdf(&sp, wo, wi)),
-                            };
-                            result += throughput(beta, ratio) * f * tr * es.weight * w;
-                        }
-                    }
-                }
+                let light = next_event(
+                    scene,
+                    (si.p, si.n),
+                    u_light,
+                    sampler,
+                    |wi| scene.medium_after(&si, wi, medium),
+                    |wi| {
+                        let wi = si.to_local(wi);
+                        bsdf.eval(&sp, wo, wi) * wi.z.abs()
+                    },
+                    |wi| bsdf.pdf(&sp, wo, si.to_local(wi)),
+                );
+                result += throughput(beta, ratio) * light;
             }
 
             let Some(bs) = bsdf.sample(&sp, wo, u1, u2) else { break };
@@ -308,4 +295,35 @@ fn apply(beta: &mut Spectrum, ratio: &mut Spectrum, w: FlightWeight) -> bool {
         *ratio /= top;
     }
     true
+}
+
+/// Next-event estimation at a vertex `(p, n)` (`n` the surface's geometric normal, zero for a
+/// point in a medium): one light sampled, its light weighted by `scatter(wi)` (the phase
+/// function, or the BSDF times the cosine), by the transmittance to the light through
+/// `medium_towards(wi)` and whatever it crosses, and by MIS with the power heuristic against
+/// `pdf(wi)`, the vertex's own sampling density (not used for delta lights).
+#[inline(always)]
+fn next_event(
+    scene: &Scene,
+    (p, n): (Vec3, Vec3),
+    u_light: glam::Vec2,
+    sampler: &mut PixelSampler,
+    medium_towards: impl Fn(Vec3) -> Option<u32>,
+    scatter: impl Fn(Vec3) -> Spectrum,
+    pdf: impl Fn(Vec3) -> f32,
+) -> Spectrum {
+    let Some(es) = scene.sample_emitter_direction(p, u_light) else { return Spectrum::ZERO };
+    let f = scatter(es.wi);
+    if f == Spectrum::ZERO {
+        return Spectrum::ZERO;
+    }
+    let tr = scene.transmittance(p, n, es.wi, es.dist, medium_towards(es.wi), sampler);
+    if tr == Spectrum::ZERO {
+        return Spectrum::ZERO;
+    }
+    let w = match es.support {
+        Support::Delta => 1.0,
+        Support::Extended => power_heuristic(es.pdf, pdf(es.wi)),
+    };
+    f * tr * es.weight * w
 }

@@ -81,13 +81,8 @@ fn volpath_irradiance(
             h += es.weight * tr * (cos * w);
         }
     }
-    let local = warp::square_to_cosine_hemisphere(sampler.next_2d());
-    if local.z <= 0.0 {
-        return h;
-    }
-    let wi = Frame::from_normal(n).to_world(local).normalize();
-    let ray = Ray::infinite(offset_ray_origin(p, n, wi), wi);
-    let last = super::volpath::LastScatter::Sampled { p, pdf: cos_pdf(wi) };
+    let Some((ray, pdf)) = cosine_ray(p, n, sampler) else { return h };
+    let last = super::volpath::LastScatter::Sampled { p, pdf };
     let visible = VolPathTracer { emitters: EmitterVisibility::Visible, ..v.clone() };
     h + visible.li_from(scene, &ray, medium, last, sampler) * PI
 }
@@ -132,13 +127,8 @@ pub fn estimate_irradiance(
     }
 
     // 2. a cosine-weighted direction: weight L·cos/pdf = π·L
-    let local = warp::square_to_cosine_hemisphere(sampler.next_2d());
-    if local.z <= 0.0 {
-        return h;
-    }
-    let wi = Frame::from_normal(n).to_world(local).normalize();
-    let pdf = cos_pdf(wi);
-    let ray = Ray::infinite(offset_ray_origin(p, n, wi), wi);
+    let Some((ray, pdf)) = cosine_ray(p, n, sampler) else { return h };
+    let wi = ray.d;
     match scene.intersect(&ray) {
         Some(hit) => {
             if let Some((_, emitter)) = scene.area_emitter(&hit) {
@@ -173,4 +163,16 @@ pub fn estimate_irradiance(
         h += reflected.li(scene, &ray, sampler) * PI;
     }
     h
+}
+
+/// A cosine-weighted direction about `n` leaving `p` (offset off the surface) and its density
+/// cos θ/π (1/sr); `None` for a direction in the plane.
+#[inline]
+fn cosine_ray(p: Vec3, n: Vec3, sampler: &mut PixelSampler) -> Option<(Ray, f32)> {
+    let local = warp::square_to_cosine_hemisphere(sampler.next_2d());
+    if local.z <= 0.0 {
+        return None;
+    }
+    let wi = Frame::from_normal(n).to_world(local).normalize();
+    Some((Ray::infinite(offset_ray_origin(p, n, wi), wi), n.dot(wi).max(0.0) / PI))
 }

@@ -7,25 +7,10 @@ mod common;
 
 use std::path::Path;
 
-use steradian::render::{measure, RenderOptions};
-
-const FILM: &str = r#"<film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>"#;
+use common::METER_FILM;
 
 fn read(xml: &str, id: &str, spp: u32) -> ([f64; 3], [f64; 3]) {
-    let job = steradian_mitsuba::load_string(xml, Path::new("sun.xml"), Path::new("."), &[])
-        .unwrap_or_else(|e| panic!("{e}"));
-    let sensor = job.scene.find_sensor(id).unwrap();
-    let m = measure(
-        &job,
-        &RenderOptions {
-            spp: Some(spp),
-            seed: Some(3),
-            sensor: Some(sensor),
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    (m.value, m.stderr)
+    common::read_meter(xml, id, spp, 3)
 }
 
 /// The sun at altitude `alt` (degrees) in the x–y plane (y up).
@@ -44,7 +29,7 @@ fn horizontal_irradiance_under_each_integrator() {
   <emitter type="sun"><vector name="sun_direction" x="{x}" y="{y}" z="0"/><rgb name="irradiance" value="800, 900, 1000"/><float name="angular_radius" value="2"/></emitter>
   <shape type="disk">
     <transform name="to_world"><scale value="1e-5"/><rotate x="1" angle="-90"/></transform>
-    <sensor type="irradiancemeter" id="meter">{FILM}</sensor>
+    <sensor type="irradiancemeter" id="meter">{METER_FILM}</sensor>
   </shape>
 </scene>"#
         );
@@ -75,7 +60,7 @@ fn a_mirror_shows_the_disk() {
   </shape>
   <sensor type="radiancemeter" id="meter">
     <point name="origin" x="{}" y="{}" z="0"/><vector name="direction" x="{}" y="{}" z="0"/>
-    {FILM}
+    {METER_FILM}
   </sensor>
 </scene>"#,
             -x * 2.0,

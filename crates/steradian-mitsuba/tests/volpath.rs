@@ -12,9 +12,12 @@ mod common;
 
 use std::path::Path;
 
-use common::{image_mean_z, reference_scene as data, reference_scene_with, z_test_against};
+use common::{
+    image_mean_z, read_meter, reference_scene as data, reference_scene_with, z_test_against,
+    METER_FILM,
+};
 use steradian::radiometry;
-use steradian::render::{measure, Job, RenderOptions};
+use steradian::render::Job;
 
 const SPP: u32 = 64;
 
@@ -101,24 +104,6 @@ fn heterogeneous_gridvolume_cloud() {
     );
 }
 
-/// (value, stderr) of meter `id` in an inline scene (seed 1, `spp` samples).
-fn read_meter(xml: &str, id: &str, spp: u32) -> ([f64; 3], [f64; 3]) {
-    let job = steradian_mitsuba::load_string(xml, Path::new("meter.xml"), Path::new("."), &[])
-        .unwrap_or_else(|e| panic!("{e}"));
-    let sensor = job.scene.find_sensor(id).unwrap();
-    let m = measure(
-        &job,
-        &RenderOptions {
-            spp: Some(spp),
-            seed: Some(1),
-            sensor: Some(sensor),
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    (m.value, m.stderr)
-}
-
 fn assert_within_3se(value: [f64; 3], stderr: [f64; 3], want: [f64; 3], what: &str) {
     for c in 0..3 {
         let z = (value[c] - want[c]) / stderr[c].max(1e-12);
@@ -127,7 +112,33 @@ fn assert_within_3se(value: [f64; 3], stderr: [f64; 3], want: [f64; 3], what: &s
     }
 }
 
-const METER_FILM: &str = r#"<film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>"#;
+/// A radiance meter at z = 5 looking down at a 20 × 20 m emitter of `radiance` at z = −5
+/// through a null-bounded `shape` (its default size, about the origin) holding `medium`, under
+/// `volpath` with `integrator_params`.
+fn emitter_behind_a_medium(
+    integrator_params: &str,
+    radiance: &str,
+    shape: &str,
+    medium: &str,
+) -> String {
+    format!(
+        r#"<scene version="3.0.0">
+  <integrator type="volpath">{integrator_params}</integrator>
+  <sensor type="radiancemeter" id="meter">
+    <point name="origin" x="0" y="0" z="5"/><vector name="direction" x="0" y="0" z="-1"/>
+    {METER_FILM}
+  </sensor>
+  <shape type="rectangle">
+    <transform name="to_world"><scale value="10"/><translate z="-5"/></transform>
+    <emitter type="area"><rgb name="radiance" value="{radiance}"/></emitter>
+  </shape>
+  <shape type="{shape}">
+    <bsdf type="null"/>
+    {medium}
+  </shape>
+</scene>"#
+    )
+}
 
 /// Radiance through an absorbing (albedo 0) medium is the emitted radiance times
 /// exp(−σ_t d): a radiance meter looking at an emitter through a null-bounded cube (d = 2 m
@@ -135,32 +146,15 @@ const METER_FILM: &str = r#"<film type="hdrfilm"><integer name="width" value="1"
 #[test]
 fn beer_lambert_through_a_slab_and_a_sphere() {
     let sigma = [0.3, 0.8, 1.6];
-    let scene = |shape: &str| {
-        format!(
-            r#"<scene version="3.0.0">
-  <integrator type="volpath"/>
-  <sensor type="radiancemeter" id="meter">
-    <point name="origin" x="0" y="0" z="5"/><vector name="direction" x="0" y="0" z="-1"/>
-    {METER_FILM}
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="10"/><translate z="-5"/></transform>
-    <emitter type="area"><rgb name="radiance" value="2, 3, 4"/></emitter>
-  </shape>
-  <shape type="{shape}">
-    <bsdf type="null"/>
-    <medium type="homogeneous" name="interior">
+    let medium = r#"<medium type="homogeneous" name="interior">
       <rgb name="albedo" value="0"/>
       <rgb name="sigma_t" value="0.15, 0.4, 0.8"/>
       <float name="scale" value="2"/>
-    </medium>
-  </shape>
-</scene>"#
-        )
-    };
+    </medium>"#;
+    let scene = |shape: &str| emitter_behind_a_medium("", "2, 3, 4", shape, medium);
     let le = [2.0, 3.0, 4.0];
     for (shape, d) in [("cube", 2.0), ("sphere", 2.0)] {
-        let (v, se) = read_meter(&scene(shape), "meter", 4096);
+        let (v, se) = read_meter(&scene(shape), "meter", 4096, 1);
         let want: [f64; 3] = std::array::from_fn(|c| le[c] * radiometry::beer_lambert(sigma[c], d));
         assert_within_3se(v, se, want, &format!("through a {shape}"));
     }
@@ -188,7 +182,7 @@ fn point_irradiance_through_an_absorbing_slab() {
   </shape>
 </scene>"#
     );
-    let (v, se) = read_meter(&xml, "meter", 256);
+    let (v, se) = read_meter(&xml, "meter", 256, 1);
     let r = (0.6f64 * 0.6 + 1.2 * 1.2).sqrt();
     let theta = (1.2 / r).acos();
     let want: [f64; 3] = std::array::from_fn(|c| {
@@ -235,9 +229,9 @@ fn white_furnace_inside_a_scattering_medium() {
 </scene>"#
     );
     let le = [0.7, 1.1, 1.5];
-    let (v, se) = read_meter(&xml, "radiance", 4096);
+    let (v, se) = read_meter(&xml, "radiance", 4096, 1);
     assert_within_3se(v, se, le, "radiance in the furnace");
-    let (v, se) = read_meter(&xml, "irradiance", 4096);
+    let (v, se) = read_meter(&xml, "irradiance", 4096, 1);
     let pi = std::f64::consts::PI;
     assert_within_3se(v, se, le.map(|l| pi * l), "irradiance in the furnace");
 }
@@ -280,7 +274,7 @@ fn single_scattering_from_a_half_space() {
 </scene>"#,
         beam.x, beam.z, origin.x, origin.z, view.x, view.z
     );
-    let (v, se) = read_meter(&xml, "meter", 4096);
+    let (v, se) = read_meter(&xml, "meter", 4096, 1);
     let (e, albedo) = ([2.0, 3.0, 4.0], [0.8, 0.6, 0.4]);
     let want: [f64; 3] = std::array::from_fn(|c| {
         radiometry::single_scattering_half_space(e[c], albedo[c], hg, theta0.cos(), theta.cos())
@@ -293,24 +287,13 @@ fn single_scattering_from_a_half_space() {
 /// transmittance; under `path` the crossing would count as a bounce.
 #[test]
 fn null_crossings_do_not_count_towards_max_depth() {
-    let xml = format!(
-        r#"<scene version="3.0.0">
-  <integrator type="volpath"><integer name="max_depth" value="1"/></integrator>
-  <sensor type="radiancemeter" id="meter">
-    <point name="origin" x="0" y="0" z="5"/><vector name="direction" x="0" y="0" z="-1"/>
-    {METER_FILM}
-  </sensor>
-  <shape type="rectangle">
-    <transform name="to_world"><scale value="10"/><translate z="-5"/></transform>
-    <emitter type="area"><rgb name="radiance" value="1"/></emitter>
-  </shape>
-  <shape type="cube">
-    <bsdf type="null"/>
-    <medium type="homogeneous" name="interior"><rgb name="albedo" value="0"/><rgb name="sigma_t" value="0.5"/></medium>
-  </shape>
-</scene>"#
+    let xml = emitter_behind_a_medium(
+        r#"<integer name="max_depth" value="1"/>"#,
+        "1",
+        "cube",
+        r#"<medium type="homogeneous" name="interior"><rgb name="albedo" value="0"/><rgb name="sigma_t" value="0.5"/></medium>"#,
     );
-    let (v, se) = read_meter(&xml, "meter", 1024);
+    let (v, se) = read_meter(&xml, "meter", 1024, 1);
     let t = radiometry::beer_lambert(0.5, 2.0);
     assert_within_3se(v, se, [t; 3], "through a null cube at max_depth 1");
 }

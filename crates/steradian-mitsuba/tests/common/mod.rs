@@ -178,3 +178,22 @@ pub fn lit_corner(integrator: &str, width: u32, height: u32) -> Job {
     steradian_mitsuba::load_string(&xml, Path::new("lit-corner.xml"), Path::new("."), &[])
         .expect("the lit corner loads")
 }
+
+/// A 1 × 1 box-filtered film, as a meter in an inline scene needs.
+pub const METER_FILM: &str = r#"<film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film>"#;
+
+/// (value, stderr) per RGB channel of meter `id` in the inline scene `xml`, measured at `spp`
+/// samples with `seed`.
+pub fn read_meter(xml: &str, id: &str, spp: u32, seed: u64) -> ([f64; 3], [f64; 3]) {
+    let job = steradian_mitsuba::load_string(xml, Path::new("meter.xml"), Path::new("."), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let sensor = job.scene.find_sensor(id).unwrap();
+    let opts = RenderOptions {
+        spp: Some(spp),
+        seed: Some(seed),
+        sensor: Some(sensor),
+        ..Default::default()
+    };
+    let m = steradian::render::measure(&job, &opts).unwrap();
+    (m.value, m.stderr)
+}

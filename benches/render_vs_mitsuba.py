@@ -3,7 +3,7 @@
 
     python3 benches/render_vs_mitsuba.py [--scenes cornell,furnace,pointlight] [--spp 64]
         [--variant llvm_ad_rgb[,scalar_rgb]] [--repeat 3] [--threads N] [--json FILE|-]
-        [--pgo] [--no-build]
+        [--pgo] [--no-build] [--allocation auto|adaptive|uniform]
 
 For every scene, in one process and alternating (steradian, then each Mitsuba variant, then
 steradian again, ...) so that all see the same machine:
@@ -183,12 +183,16 @@ def build_steradian():
 
 
 RENDERED = re.compile(r"rendered (\d+)x(\d+) at (\d+) spp in ([0-9.]+) s")
+ALLOCATION = re.compile(r"allocation: a pilot of (\d+) spp \(([0-9.]+) s\) predicted ([0-9.]+)\S* "
+                        r"lower relative variance adaptive: (adaptive|uniform)")
 
 
-def run_steradian(exe, scene, spp, seed, threads, out):
+def run_steradian(exe, scene, spp, seed, threads, out, allocation=None):
     cmd = [exe, "render", scene, "--spp", str(spp), "--seed", str(seed), "-o", out, "--quiet"]
     if threads:
         cmd += ["--threads", str(threads)]
+    if allocation:
+        cmd += ["--allocation", allocation]
     r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.perf_counter()
     p = subprocess.run(cmd, capture_output=True, text=True)
@@ -204,6 +208,9 @@ def run_steradian(exe, scene, spp, seed, threads, out):
         res["render_s"] = float(m.group(4))
         if int(m.group(3)) != spp:
             res["error"] = f"steradian rendered {m.group(3)} spp instead of {spp}"
+    a = ALLOCATION.search(p.stdout)
+    res["allocation"] = dict(kind=a.group(4), pilot_s=float(a.group(2)),
+                             predicted_gain=float(a.group(3))) if a else dict(kind="uniform")
     return res
 
 
@@ -252,10 +259,11 @@ def fmt_t(x):
 
 
 def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, log=sys.stderr, pgo=False,
-        pairs=1):
+        pairs=1, allocation=None):
     """Runs the benchmark; returns a JSON-able dict (and prints progress to `log`).
     `pgo`: time the profile-guided build (scripts/build-pgo.sh), else the plain release build;
-    `build`: build it first, else use the binary already there."""
+    `build`: build it first, else use the binary already there; `allocation`: steradian's
+    --allocation (None: its default)."""
     import numpy as np
     mi, dr = import_mitsuba(variants, threads)
     if build:
@@ -268,7 +276,8 @@ def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, l
                   variants=variants, target_relmse=TARGET, cpu_count=os.cpu_count(),
                   loadavg_start=[round(x, 2) for x in os.getloadavg()], scenes=[], skipped=[],
                   libllvm=os.environ.get("DRJIT_LIBLLVM_PATH"), mitsuba_version=mi.__version__,
-                  steradian=exe, steradian_build="profile-guided release" if pgo else "release")
+                  steradian=exe, steradian_build="profile-guided release" if pgo else "release",
+                  allocation=allocation or "default (auto)")
     try:
         for name in scenes:
             sname, xml, ref = scene_paths(name)
@@ -293,7 +302,7 @@ def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, l
             mi_imgs = {v: {} for v in variants}
             for i in range(repeat):
                 for k, st_out in zip(seeds, st_outs):
-                    r = run_steradian(exe, xml, spp, k, threads, st_out)
+                    r = run_steradian(exe, xml, spp, k, threads, st_out, allocation)
                     if "error" in r:
                         raise RuntimeError(f"[{sname}] steradian: {r['error']}")
                     st_runs.append(r)
@@ -311,7 +320,8 @@ def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, l
             st = dict(time_s=st_wall, cpu_s=statistics.median(r["cpu"] for r in st_runs),
                       render_s=statistics.median(r.get("render_s", float("nan")) for r in st_runs),
                       times=[round(r["wall"], 4) for r in st_runs],
-                      relmse=st_e, mean_ratio=st_ratio, z_bias=st_z, t_target_s=st_wall * st_e / TARGET)
+                      relmse=st_e, mean_ratio=st_ratio, z_bias=st_z, t_target_s=st_wall * st_e / TARGET,
+                      allocation=st_runs[0]["allocation"])
             entry = dict(scene=sname, spp=spp, seeds=list(seeds), res=st_runs[0].get("res"),
                          steradian=st, mitsuba={})
             for v in variants:
@@ -356,6 +366,7 @@ def report(res, out=sys.stdout):
     p("t@1e-3 = time x e / 1e-3 (e ~ 1/spp); speed-up = Mitsuba t@1e-3 / steradian t@1e-3")
     p("bias: mean ratio to the reference per channel, z_bias = (image mean - reference mean) / its stderr")
     p("own s = the render time steradian prints itself (no start-up, load or writing)")
+    p(f"steradian sample allocation: {res.get('allocation', 'default (auto)')}")
     p()
     hdr = f"{'scene':<14} {'renderer':<12} {'spp':>4} {'time s':>7} {'own s':>6} {'cpu s':>7} {'e':>9} " \
           f"{'mean ratio R,G,B':<22} {'z_bias':>6} {'t@1e-3 s':>8} {'speed-up':>8}"
@@ -375,6 +386,10 @@ def report(res, out=sys.stdout):
     for v, g in res["geomean_speedup"].items():
         n = sum(1 for e in res["scenes"] if e["mitsuba"][v]["speedup"])
         p(f"geometric mean speed-up vs {v} over {n} scene(s): " + ("-" if g is None else f"{g:.2f}x"))
+    for e in res["scenes"]:
+        a = e["steradian"].get("allocation", {})
+        if "pilot_s" in a:
+            p(f"{e['scene']}: {a['kind']} (pilot {a['pilot_s']:.2f} s, predicted gain {a['predicted_gain']:.2f}x)")
     for s in res["skipped"]:
         p(f"skipped {s['scene']}: {s['reason']}")
 
@@ -396,6 +411,8 @@ def main(argv=None):
     ap.add_argument("--pgo", action="store_true",
                     help="time the profile-guided build (scripts/build-pgo.sh) instead of the "
                          "default release build (cargo build --release)")
+    ap.add_argument("--allocation", choices=["auto", "adaptive", "uniform"],
+                    help="steradian's --allocation (default: steradian's own default, auto)")
     ap.add_argument("--no-build", action="store_true",
                     help="use the binary already built (target/release/steradian, or "
                          "target/pgo/release/steradian with --pgo)")
@@ -403,7 +420,8 @@ def main(argv=None):
     if a.spp < 1 or a.repeat < 1 or a.pairs < 1 or a.threads < 0:
         ap.error("--spp, --repeat and --pairs must be >= 1, --threads >= 0")
     res = run([s for s in a.scenes.split(",") if s], a.spp, [v for v in a.variant.split(",") if v],
-              a.repeat, a.threads, a.seed, a.keep, not a.no_build, pgo=a.pgo, pairs=a.pairs)
+              a.repeat, a.threads, a.seed, a.keep, not a.no_build, pgo=a.pgo, pairs=a.pairs,
+              allocation=a.allocation)
     if a.json == "-":
         print(json.dumps(res, indent=1))
     else:

@@ -75,6 +75,7 @@ class Scene:
         checkpoint_interval: float = 60.0,
         time_limit: Optional[float] = None,
         target_error: Optional[float] = None,
+        allocation: Literal["auto", "adaptive", "uniform"] = "auto",
     ) -> npt.NDArray[np.float32]: ...
     def measure(
         self,

@@ -41,6 +41,21 @@ def test_render_equals_cli_exr(cli, tmp_path, spp, seed, sensor, quantity, res):
     assert from_python.tobytes() == from_cli.tobytes()
 
 
+def test_adaptive_render_equals_cli_exr(cli, tmp_path):
+    """An adaptive render (its pilot, densities and weighted samples) is the same in both."""
+    exr = tmp_path / "cli.exr"
+    out = run(cli, "render", CORNELL, "-o", exr, "--spp", 8, "--seed", 3, "--quiet", "-D", "res=32",
+              "--allocation", "adaptive")
+    assert "allocation: a pilot of 4 spp" in out and ": adaptive," in out, out
+    scene = steradian.load_file(CORNELL, res=32)
+    from_python = scene.render(spp=8, seed=3, allocation="adaptive")
+    assert from_python.tobytes() == steradian.read_exr(exr).tobytes()
+    uniform = scene.render(spp=8, seed=3, allocation="uniform")
+    assert not np.array_equal(uniform, from_python)
+    with pytest.raises(ValueError, match="allocation must be"):
+        scene.render(spp=8, allocation="smart")
+
+
 def test_measure_equals_cli_measure(cli):
     reading = json.loads(run(cli, "measure", DISK_METER, "--spp", 5000, "--seed", 3, "--json"))
     m = steradian.load_file(DISK_METER).measure(spp=5000, seed=3)

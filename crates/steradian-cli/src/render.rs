@@ -11,7 +11,8 @@ use steradian::film::false_color_png;
 use steradian::film::{write_exr, write_exr_channels, write_png, ComponentFormat, ExrLayer};
 use steradian::integrator::Integrator;
 use steradian::render::{
-    render, Checkpoint, PixelQuantity, Progress, RenderError, RenderOptions, RenderSums,
+    image_error, render, Checkpoint, PixelQuantity, Progress, RenderError, RenderOptions,
+    RenderSums, SampleAllocation, IMAGE_ERROR_FLOOR, IMAGE_PIXEL_QUANTILE, MIN_ADAPTIVE_GAIN,
 };
 use steradian::sampling::SamplerKind;
 
@@ -69,6 +70,13 @@ pub struct RenderArgs {
     /// samples taken (default 1048576).
     #[arg(long, value_name = "FRACTION")]
     target_error: Option<f64>,
+    /// How samples are spread over the pixels: `auto` (a pilot of 4 independent scrambles of
+    /// 1 to 4 samples in one pixel of every 2 × 2, then adaptive where it predicts at least
+    /// 1.4× lower relative variance; uniform below 32 spp), `adaptive` (always, after the pilot: each pixel's
+    /// samples in proportion to its relative error, 0.5× to 16× the mean; --spp is then the
+    /// mean per pixel) or `uniform` (every pixel the same).
+    #[arg(long, value_enum, default_value_t = AllocationArg::Auto)]
+    allocation: AllocationArg,
     /// Keep the finished passes' sums in FILE (written atomically every
     /// --checkpoint-interval seconds and at Ctrl-C, deleted when the image is written), so that
     /// a killed render can go on with --resume FILE.
@@ -89,6 +97,13 @@ pub struct RenderArgs {
 pub enum SamplerArg {
     Sobol,
     Independent,
+}
+
+#[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum AllocationArg {
+    Auto,
+    Adaptive,
+    Uniform,
 }
 
 #[derive(Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
@@ -293,6 +308,11 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         time_limit,
         target_error: args.target_error,
         batch: None,
+        allocation: match args.allocation {
+            AllocationArg::Auto => SampleAllocation::Auto,
+            AllocationArg::Adaptive => SampleAllocation::Adaptive,
+            AllocationArg::Uniform => SampleAllocation::Uniform,
+        },
     };
     let out = render(&scene, &opts).map_err(|e| match (e, &args.resume) {
         (RenderError::Resume(e), Some(path)) => {
@@ -358,6 +378,14 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         );
     }
     crate::measure::report_target(args.target_error, out.target_reached, out.spp);
+    if out.quantity == PixelQuantity::Sensor || args.target_error.is_some() {
+        println!(
+            "error reached: {:.0} % of the pixels within ±{:.2} % of their value at 95 % confidence (a pixel's value counting at least {:.0} % of the image's mean)",
+            IMAGE_PIXEL_QUANTILE * 100.0,
+            image_error(out.film()) * 100.0,
+            IMAGE_ERROR_FLOOR * 100.0
+        );
+    }
     // the work counted as it is done: a camera sample of `path` with n branches traces n
     // paths from its first hit; the particle tracer's samples are light paths
     let per_second = |n: u64| n as f64 / secs.max(1e-9) / 1e6;
@@ -386,6 +414,19 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         secs,
         out.dropped_samples
     );
+    if let Some(a) = out.adaptive {
+        let decided = if a.adaptive {
+            format!("adaptive, {} samples in all", out.samples())
+        } else {
+            format!("uniform (less than {MIN_ADAPTIVE_GAIN}× to gain)")
+        };
+        println!(
+            "allocation: a pilot of {} spp ({:.2} s) predicted {:.2}× lower relative variance adaptive: {decided}",
+            a.pilot_spp,
+            a.pilot_time.as_secs_f64(),
+            a.predicted_gain
+        );
+    }
     match (out.branches, out.pilot) {
         (Some(n), Some(p)) => println!(
             "path: {n} {} per camera sample, chosen by a pilot of {} samples",

@@ -94,6 +94,9 @@ fn builtin_scene_without_arguments() {
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("no branch count in {stdout}"));
     assert_eq!(branches > 1, stdout.contains("Mpaths/s"), "{stdout}");
+    // the error reached; at 2 spp no adaptive pilot (auto starts at 32)
+    assert!(stdout.contains("error reached: 95 % of the pixels within ±"), "{stdout}");
+    assert!(!stdout.contains("allocation:"), "{stdout}");
     // the phases' times: parsing, reading files and the BVH build make up the load
     let line = stdout.lines().find(|l| l.starts_with("time: load ")).expect("a time line");
     let secs: Vec<f64> = line.split(' ').filter_map(|w| w.parse().ok()).collect();
@@ -359,5 +362,38 @@ fn measure_prints_a_work_plane_grid() {
     assert!(
         lines[1].starts_with("0,0,") && lines[2].starts_with("1,0,") && lines.len() == 3,
         "{csv}"
+    );
+}
+
+/// `--allocation adaptive` runs the pilot and says what it decided and the samples spent;
+/// irradiance maps refuse it.
+#[test]
+fn adaptive_allocation_is_reported() {
+    let dir = temp_dir("adaptive");
+    let out = ok(&dir, &["render", "-D", "res=32", "--spp", "8", "--allocation", "adaptive"]);
+    assert!(out.contains("allocation: a pilot of 4 spp"), "{out}");
+    assert!(out.contains("lower relative variance adaptive: adaptive, "), "{out}");
+    let samples: u64 = out
+        .split("adaptive, ")
+        .nth(1)
+        .and_then(|t| t.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no sample count in {out}"));
+    // ⌈d·8⌉ per pixel: at least 8 on average, less than one more
+    assert!((32 * 32 * 8..32 * 32 * 9).contains(&samples), "{samples}");
+    fails(
+        &dir,
+        &[
+            "render",
+            "-D",
+            "res=32",
+            "--spp",
+            "8",
+            "--allocation",
+            "adaptive",
+            "--quantity",
+            "irradiance",
+        ],
+        &["allocation", "adaptive applies to radiance images"],
     );
 }

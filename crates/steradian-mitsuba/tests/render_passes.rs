@@ -7,7 +7,7 @@ mod common;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use steradian::render::Job;
-use steradian::render::{render, Progress, RenderOptions, RenderOutput};
+use steradian::render::{render, Progress, RenderOptions, RenderOutput, SampleAllocation};
 
 /// A 40 × 24 film (2 × 1 tiles, so each pass is split into sample ranges too) of the lit
 /// corner (`common::lit_corner`), blocks overlapping across tile borders.
@@ -58,12 +58,15 @@ fn a_cancelled_render_keeps_only_whole_passes() {
                 cancel.store(true, Ordering::Relaxed);
             }
         };
+        // uniform: an adaptive render's densities depend on the spp asked for, so its first
+        // passes are not a shorter render's
         let opts = RenderOptions {
             spp: Some(256),
             seed: Some(7),
             threads: Some(threads),
             cancel: Some(&cancel),
             progress: Some(&progress),
+            allocation: SampleAllocation::Uniform,
             ..Default::default()
         };
         let out = render(&s, &opts).unwrap();
@@ -75,6 +78,7 @@ fn a_cancelled_render_keeps_only_whole_passes() {
                 spp: Some(out.spp),
                 seed: Some(7),
                 threads: Some(1),
+                allocation: SampleAllocation::Uniform,
                 ..Default::default()
             },
         )

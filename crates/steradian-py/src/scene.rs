@@ -10,7 +10,7 @@ use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 use steradian::render::{
     render, Checkpoint, GridReading, Job, PixelQuantity, RenderError, RenderOptions, RenderOutput,
-    RenderSums,
+    RenderSums, SampleAllocation,
 };
 use steradian::sensor::{Quantity, SensorKind};
 
@@ -193,6 +193,10 @@ impl Scene {
     /// - `target_error`: stop once 95 % of the pixels are within this fraction of their value
     ///   at 95 % confidence, a pixel's value counting at least 1 % of the image's mean; `spp`
     ///   is then the most samples taken (default 1048576). `measure` takes it too, per reading.
+    /// - `allocation`: how the samples are spread over the pixels: `"auto"` (the default: a
+    ///   short pilot, then adaptive sampling where it predicts at least 1.4× lower relative
+    ///   variance), `"adaptive"` or `"uniform"`; `spp` is the mean per pixel of an adaptive
+    ///   render. The same image bit for bit as `steradian render --allocation`.
     /// - `checkpoint`: a file that keeps the finished passes' sums (written atomically every
     ///   `checkpoint_interval` seconds and when the render is stopped); a render given a
     ///   checkpoint that exists continues from it, and returns the uninterrupted render's image
@@ -206,8 +210,8 @@ impl Scene {
     /// The GIL is released while rendering. Ctrl-C stops the render and raises
     /// `KeyboardInterrupt`.
     #[pyo3(
-        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None, target_error=None),
-        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None, target_error=None)"
+        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None, target_error=None, allocation="auto"),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None, target_error=None, allocation='auto')"
     )]
     #[allow(clippy::too_many_arguments)]
     fn render<'py>(
@@ -223,9 +227,20 @@ impl Scene {
         checkpoint_interval: f64,
         time_limit: Option<f64>,
         target_error: Option<f64>,
+        allocation: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
         let time_limit = time_limit_arg(time_limit)?;
         let pixel_quantity = pixel_quantity(quantity)?;
+        let allocation = match allocation {
+            "auto" => SampleAllocation::Auto,
+            "adaptive" => SampleAllocation::Adaptive,
+            "uniform" => SampleAllocation::Uniform,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "allocation must be 'auto', 'adaptive' or 'uniform', not {other:?}"
+                )))
+            }
+        };
         let sensor = self.sensor(sensor)?;
         let scene = &*self.inner;
         if !(checkpoint_interval.is_finite() && checkpoint_interval >= 0.0) {
@@ -268,6 +283,7 @@ impl Scene {
                 scene_digest,
                 time_limit,
                 target_error,
+                allocation,
                 ..Default::default()
             };
             let out = render(scene, &opts).map_err(|e| match (e, &checkpoint) {

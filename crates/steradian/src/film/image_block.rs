@@ -217,6 +217,14 @@ impl ImageBlock {
     /// dropped whole.
     #[inline]
     pub fn put_with_aovs(&mut self, pos: Vec2, value: Spectrum, aovs: &[Spectrum]) {
+        self.put_scaled(pos, value, aovs, 1.0);
+    }
+
+    /// [`put_with_aovs`](Self::put_with_aovs) with every filter weight multiplied by `scale`
+    /// (> 0): an adaptive render weighs each sample by the inverse of its pixel's sample
+    /// density, so that the filter's expectation is that of a uniform render.
+    #[inline]
+    pub fn put_scaled(&mut self, pos: Vec2, value: Spectrum, aovs: &[Spectrum], scale: f64) {
         if !(pos.is_finite() && value.is_finite() && aovs.iter().all(|a| a.is_finite())) {
             self.dropped += 1;
             return;
@@ -236,8 +244,8 @@ impl ImageBlock {
                 return;
             }
             let i = (ly * self.stride[0] + lx) as usize;
-            self.data[i].add_sample(1.0, l);
-            self.add_aovs(i, 1.0, aovs);
+            self.data[i].add_sample(scale, l);
+            self.add_aovs(i, scale, aovs);
             return;
         }
 
@@ -256,7 +264,7 @@ impl ImageBlock {
             tap_offsets(lo_x, pos.x, wx);
             tap_offsets(lo_y, pos.y, wy);
             self.filter.eval_in_place(&mut w);
-            self.splat(x0, &w[..nx], y0, &w[SMALL_TAPS..SMALL_TAPS + ny], l, aovs);
+            self.splat(x0, &w[..nx], y0, &w[SMALL_TAPS..SMALL_TAPS + ny], l, aovs, scale);
         } else {
             let mut wx = [0.0f32; MAX_FILTER_TAPS];
             let mut wy = [0.0f32; MAX_FILTER_TAPS];
@@ -264,12 +272,13 @@ impl ImageBlock {
             tap_offsets(lo_y, pos.y, &mut wy[..ny]);
             self.filter.eval_in_place(&mut wx[..nx]);
             self.filter.eval_in_place(&mut wy[..ny]);
-            self.splat(x0, &wx[..nx], y0, &wy[..ny], l, aovs);
+            self.splat(x0, &wx[..nx], y0, &wy[..ny], l, aovs, scale);
         }
     }
 
-    /// Adds `l` with weight `wy[j]·wx[i]` to local pixel (x0 + i, y0 + j).
+    /// Adds `l` with weight `scale·wy[j]·wx[i]` to local pixel (x0 + i, y0 + j).
     #[inline(always)]
+    #[allow(clippy::too_many_arguments)]
     fn splat(
         &mut self,
         x0: usize,
@@ -278,6 +287,7 @@ impl ImageBlock {
         wy: &[f32],
         l: [f64; 3],
         aovs: &[Spectrum],
+        scale: f64,
     ) {
         let stride = self.stride[0] as usize;
         for (j, &wyj) in wy.iter().enumerate() {
@@ -285,7 +295,7 @@ impl ImageBlock {
                 continue;
             }
             let row = (y0 + j) * stride + x0;
-            let wyj = wyj as f64;
+            let wyj = wyj as f64 * scale;
             for (px, &wxi) in self.data[row..row + wx.len()].iter_mut().zip(wx) {
                 if wxi != 0.0 {
                     px.add_sample(wyj * wxi as f64, l);

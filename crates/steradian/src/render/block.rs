@@ -4,6 +4,7 @@
 
 use glam::{UVec2, Vec2};
 
+use super::densities::Densities;
 use super::options::Plan;
 use super::quantity::PixelQuantity;
 use super::schedule::WorkItem;
@@ -30,6 +31,9 @@ pub(super) struct BlockRenderer<'a> {
     pub height: u32,
     /// AOV layers of the film (`moment`'s), 0 for most integrators.
     pub aov_layers: usize,
+    /// An adaptive render's per-pixel sample counts and weights (`adaptive.rs`); `None`:
+    /// every pixel takes the item's samples with weight 1.
+    pub densities: Option<&'a Densities>,
 }
 
 /// The most AOV layers a sample carries (`moment` with 8 nested integrators, `aov` with 16
@@ -40,6 +44,8 @@ pub const MAX_AOV_LAYERS: usize = 16;
 pub(super) struct RenderedBlock {
     /// The sums, with the count of samples dropped for a NaN or infinite value.
     pub block: ImageBlock,
+    /// Samples taken, all pixels.
+    pub samples: u64,
 }
 
 impl<'a> BlockRenderer<'a> {
@@ -56,6 +62,7 @@ impl<'a> BlockRenderer<'a> {
             width: plan.film.width,
             height: plan.film.height,
             aov_layers: plan.film.aov_layers().len(),
+            densities: None,
         }
     }
 
@@ -103,14 +110,23 @@ impl<'a> BlockRenderer<'a> {
         let mut block =
             ImageBlock::with_clip(offset, size, &self.filter, [width as i64, height as i64])
                 .with_aov_layers(self.aov_layers);
-        let mut dropped = 0u64;
+        let (mut dropped, mut samples) = (0u64, 0u64);
         for y in offset.y..offset.y + size.y {
             if cancelled() {
                 return None;
             }
             for x in offset.x..offset.x + size.x {
                 let pixel = UVec2::new(x, y);
-                for index in s0..s1 {
+                // this pixel's samples of the item, and their weight
+                let (first, end, scale) = match self.densities {
+                    None => (s0, s1, 1.0),
+                    Some(d) => {
+                        let i = y as usize * width as usize + x as usize;
+                        (d.count(i, s0), d.count(i, s1), d.weight(i))
+                    }
+                };
+                samples += (end - first) as u64;
+                for index in first..end {
                     let mut s = self.sampler.pixel_sampler(pixel, width, index);
                     let (mut pos, film_uv) = film_position(pixel, &mut s, width, height);
                     let l = match self.batch {
@@ -122,7 +138,7 @@ impl<'a> BlockRenderer<'a> {
                         pos = pixel.as_vec2() + Vec2::splat(0.5);
                     }
                     if l.is_finite() && aovs.iter().all(|a| a.is_finite()) {
-                        block.put_with_aovs(pos, l, aovs);
+                        block.put_scaled(pos, l, aovs, scale);
                     } else {
                         dropped += 1;
                     }
@@ -130,7 +146,7 @@ impl<'a> BlockRenderer<'a> {
             }
         }
         block.add_dropped(dropped);
-        Some(RenderedBlock { block })
+        Some(RenderedBlock { block, samples })
     }
 
     /// Sample `index` of a meter as a randomised quasi-Monte Carlo replicate: the mean of

@@ -106,6 +106,7 @@ mod tests {
             quantity: crate::render::PixelQuantity::Sensor,
             sensor: 0,
             scene_digest: 0,
+            allocation: 0,
         };
         let mut sums = crate::render::RenderSums::empty(header, &film, 0);
         sums.push_pass(2, film);
@@ -122,6 +123,9 @@ mod tests {
             interrupted: false,
             time_limited: false,
             target_reached: false,
+            film_samples: 4,
+            rendered_samples: 4,
+            adaptive: None,
         };
         let m = Measurement::from_render(&out, 0, Quantity::Radiance);
         let se = out.film().develop_stderr();

@@ -11,6 +11,12 @@
 //! `measure.rs` reduces a film to one reading. The particle tracer renders whole-film passes of
 //! light paths instead (`particles.rs`), with the same guarantees.
 //!
+//! A camera image's samples are spread over its pixels uniformly or, after a short pilot of
+//! independent scrambles, adaptively where they lower the image's relative error most
+//! (`adaptive.rs`, [`SampleAllocation`]; `Auto`, the default, decides from the pilot): the
+//! pass structure stays, each pixel holding ⌈d · s⌉ samples at the pass bound s, d its
+//! density (`densities.rs`).
+//!
 //! A render's result is its raw sums (`sums.rs`): each pass summed from zero, the passes folded
 //! in order. A render may cover only a range of the passes ([`RenderOptions::range`]) or continue
 //! sums from a checkpoint ([`RenderOptions::resume`]); ranges rendered anywhere and joined in
@@ -19,8 +25,10 @@
 //! one film-sized addition per pass (cornell at 256×256, 64 spp: within the noise of its render
 //! time, `benches/results/2026-12-06-intel-xeon.md`).
 
+mod adaptive;
 mod block;
 mod checkpoint;
+mod densities;
 mod driver;
 mod grid_reading;
 mod measure;
@@ -32,16 +40,22 @@ mod schedule;
 mod sums;
 mod target_error;
 
+pub use adaptive::{
+    pilot_spp as adaptive_pilot_spp, AdaptiveReport, ERROR_FLOOR as ADAPTIVE_ERROR_FLOOR,
+    MAX_DENSITY, MIN_ADAPTIVE_GAIN, MIN_DENSITY, MIN_SPP_FOR_AUTO,
+};
 pub use block::MAX_AOV_LAYERS;
 pub use checkpoint::Checkpoint;
 pub use driver::{pass_bounds, plan, render, RenderPlan};
 pub use grid_reading::{Estimate, GridReading, GridStats};
 pub use measure::{measure, Measurement};
-pub use options::{Progress, RenderError, RenderOptions, RenderOutput, MAX_BATCH};
+pub use options::{
+    Progress, RenderError, RenderOptions, RenderOutput, SampleAllocation, MAX_BATCH,
+};
 pub use quantity::PixelQuantity;
 pub use sums::{digest_inputs, RenderSums, SumsError, SumsHeader};
 pub use target_error::{
-    CONFIDENCE_Z, IMAGE_ERROR_FLOOR, IMAGE_PIXEL_QUANTILE, MAX_SPP_FOR_TARGET,
+    image_error, CONFIDENCE_Z, IMAGE_ERROR_FLOOR, IMAGE_PIXEL_QUANTILE, MAX_SPP_FOR_TARGET,
     MIN_SAMPLES_FOR_TARGET,
 };
 

@@ -71,6 +71,25 @@ pub struct RenderOptions<'a> {
     /// better than one point (`block.rs`); `spp` then counts replicates and the points taken
     /// are spp × batch. `None` or 1: one independent point per sample.
     pub batch: Option<u32>,
+    /// How a camera image's samples are spread over its pixels (`adaptive.rs`): `Auto` (the
+    /// default) takes a short pilot and renders adaptively where that is predicted to pay.
+    pub allocation: SampleAllocation,
+}
+
+/// How a camera image's samples are spread over its pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SampleAllocation {
+    /// A pilot, then adaptive sampling when it predicts at least
+    /// [`MIN_ADAPTIVE_GAIN`](super::MIN_ADAPTIVE_GAIN) for the image's relative error, uniform
+    /// otherwise; uniform for meters, surface maps, AOV and particle renders, and renders of
+    /// fewer than [`MIN_SPP_FOR_AUTO`](super::MIN_SPP_FOR_AUTO) samples per pixel.
+    #[default]
+    Auto,
+    /// The same samples in every pixel.
+    Uniform,
+    /// A pilot, then samples where they lower the image's relative error most (camera
+    /// radiance renders only).
+    Adaptive,
 }
 
 /// The largest `batch`: one Sobol epoch.
@@ -96,6 +115,12 @@ impl RenderOptions<'_> {
             return Err(RenderError::BadOption {
                 option: "batch",
                 reason: "must be between 1 and 65536 points per sample",
+            });
+        }
+        if self.allocation == SampleAllocation::Adaptive && self.quantity != PixelQuantity::Sensor {
+            return Err(RenderError::BadOption {
+                option: "allocation",
+                reason: "adaptive applies to radiance images, not irradiance maps",
             });
         }
         if self.time_limit.is_some_and(|t| t.is_zero()) {
@@ -134,6 +159,12 @@ pub struct RenderOutput {
     pub time_limited: bool,
     /// The render stopped because it reached `RenderOptions::target_error`.
     pub target_reached: bool,
+    /// Samples in the film, all pixels (pixels × `spp` for a uniform render).
+    pub film_samples: u64,
+    /// Samples rendered by this call, all pixels.
+    pub rendered_samples: u64,
+    /// The adaptive pilot and what it decided, when one ran.
+    pub adaptive: Option<super::AdaptiveReport>,
 }
 
 impl RenderOutput {
@@ -142,14 +173,15 @@ impl RenderOutput {
         self.sums.film()
     }
 
-    /// Samples in the film (pixels × spp).
+    /// Samples in the film, all pixels (pixels × spp for a uniform render; `spp` is then
+    /// the mean per pixel of an adaptive render).
     pub fn samples(&self) -> u64 {
-        self.film().width as u64 * self.film().height as u64 * self.spp as u64
+        self.film_samples
     }
 
-    /// Samples rendered by this call (pixels × spp_rendered).
+    /// Samples rendered by this call, all pixels (the adaptive pilot's not counted).
     pub fn samples_rendered(&self) -> u64 {
-        self.film().width as u64 * self.film().height as u64 * self.spp_rendered as u64
+        self.rendered_samples
     }
 
     /// The image in the unit of the requested quantity (illuminance converted from the
@@ -265,6 +297,8 @@ impl<'a> Plan<'a> {
             quantity: self.quantity,
             sensor: sensor as u32,
             scene_digest,
+            // set once the adaptive pilot has run
+            allocation: 0,
         }
     }
 

@@ -4,7 +4,7 @@
 //! **What they hold.** Per pixel the f64 sums Σw·L, Σw, Σw·L² and Σw² (and Σw·a per AOV
 //! layer) of the samples of a range of the render's passes, and the count of NaN/Inf samples
 //! dropped, with a header saying which render they belong to (film size, spp, seed, sampler,
-//! branch count, quantity, sensor, scene digest). Nothing is normalised: the image is Σw·L/Σw.
+//! branch count, quantity, sensor, scene digest, sample allocation). Nothing is normalised: the image is Σw·L/Σw.
 //!
 //! **Why they add up bit for bit.** f64 addition is not associative, so sums can only be
 //! combined in one fixed order. The order is the render's *pass* structure, which depends on
@@ -49,6 +49,9 @@ pub struct SumsHeader {
     /// A digest of the scene's files and overrides, set by the front end that knows them
     /// (0: not set). The renderer itself does not read it.
     pub scene_digest: u64,
+    /// A digest of an adaptive render's sample densities (`adaptive.rs`), 0 for a uniform
+    /// render: sums of different allocations cannot be joined.
+    pub allocation: u64,
 }
 
 /// Why sums could not be read or combined.
@@ -242,6 +245,13 @@ impl RenderSums {
         if a.aov_layers != b.aov_layers {
             return differ("AOV layers", a.aov_layers.to_string(), b.aov_layers.to_string());
         }
+        if a.allocation != b.allocation {
+            let name = |d: u64| match d {
+                0 => "uniform".to_string(),
+                d => format!("adaptive {d:016x}"),
+            };
+            return differ("sample allocation", name(a.allocation), name(b.allocation));
+        }
         Ok(())
     }
 
@@ -266,6 +276,7 @@ impl RenderSums {
         put_u32(&mut out, quantity_code(h.quantity));
         put_u32(&mut out, h.sensor);
         put_u64(&mut out, h.scene_digest);
+        put_u64(&mut out, h.allocation);
         put_u32(&mut out, self.first);
         put_u32(&mut out, self.end);
         put_u32(&mut out, films as u32);
@@ -326,7 +337,7 @@ impl RenderSums {
             2 => PixelQuantity::SurfaceIlluminance,
             k => return Err(SumsError::Malformed(format!("unknown quantity code {k}"))),
         };
-        let (sensor, scene_digest) = (r.u32()?, r.u64()?);
+        let (sensor, scene_digest, allocation) = (r.u32()?, r.u64()?, r.u64()?);
         let header = SumsHeader {
             width,
             height,
@@ -338,6 +349,7 @@ impl RenderSums {
             quantity,
             sensor,
             scene_digest,
+            allocation,
         };
         let (first, end, films) = (r.u32()?, r.u32()?, r.u32()?);
         if first > end || end > spp || (first == 0 && films != 1) || (first > 0 && films == 0) {
@@ -442,7 +454,7 @@ impl RenderSums {
 }
 
 const MAGIC: &[u8; 8] = b"STERSUMS";
-const FORMAT: u32 = 1;
+const FORMAT: u32 = 2;
 
 fn sampler_code(s: SamplerKind) -> u32 {
     match s {

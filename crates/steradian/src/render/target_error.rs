@@ -64,6 +64,25 @@ pub fn image_reached(film: &Film, spp: u32, e: f64) -> bool {
     reached as f64 >= IMAGE_PIXEL_QUANTILE * n
 }
 
+/// The relative error that [`IMAGE_PIXEL_QUANTILE`] of the pixels of `film` have reached at
+/// 95 % confidence (the image rule of the module docs): the image reaches a target error E when
+/// this is at most E (pixels of one sample report no error, as their standard error is 0).
+pub fn image_error(film: &Film) -> f64 {
+    let y = pixel_luminances(film);
+    let n = y.len() as f64;
+    let floor = IMAGE_ERROR_FLOOR * (y.iter().map(|(v, _)| v).sum::<f64>() / n).abs();
+    let mut e: Vec<f64> = y
+        .iter()
+        .map(|&(v, s)| match CONFIDENCE_Z * s / (v.abs() + floor) {
+            e if e.is_nan() => 0.0,
+            e => e,
+        })
+        .collect();
+    e.sort_by(f64::total_cmp);
+    let k = ((IMAGE_PIXEL_QUANTILE * n).ceil() as usize).clamp(1, e.len().max(1));
+    e.get(k - 1).copied().unwrap_or(0.0)
+}
+
 /// Each pixel's luminance and the bound Σ w_c σ_c on its standard error.
 fn pixel_luminances(film: &Film) -> Vec<(f64, f64)> {
     let (value, error) = (film.develop(), film.develop_stderr());

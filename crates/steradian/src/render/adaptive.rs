@@ -11,8 +11,9 @@
 //! n_p ∝ √v_p, v_p = σ²_p / (μ²_p + f² Ȳ²) (Lagrange: ∂/∂n_p of v_p/n_p + λ n_p = 0).
 //!
 //! **The pilot.** Before the render, one pixel of every [`PILOT_STRIDE`]² takes
-//! [`REPLICATES`] independent scrambles of [`pilot_spp`] samples each (spp/32, 1 to 4: 3 % of
-//! the samples of a 64- or 128-spp render, less of a longer one). The variance between the scrambles'
+//! [`REPLICATES`] independent scrambles of [`pilot_spp`] samples each (spp/16, 1 to 4: 6 % of
+//! the samples of a 64-spp render, less of a longer one; half of that where the first half
+//! finds too little to gain). The variance between the scrambles'
 //! means is the error of a Sobol render itself, where the variance of one scramble's samples
 //! overstates it by 1.2–5×, unevenly over the image (the reference scenes at 16 spp: on
 //! cornell a density from the one-scramble variance predicted 2.9× and gave 1.02×). The
@@ -23,9 +24,16 @@
 //! nominal spp stays valid (at 0.5 the `gridvolume` cloud fell from 99.84 % to 99.74 % of its
 //! pixels passing Mitsuba's render-test rule, below its 99.75 %). Under `Auto` the render is
 //! adaptive when the densities predict a relative variance at least [`MIN_ADAPTIVE_GAIN`]
-//! times lower than a uniform render's (the prediction runs high: cornell's 1.24× gave no
-//! gain once its pilot was paid, veach's 4.1× gave 1.9× in time to an error); otherwise it is
-//! uniform and the pilot's cost is lost.
+//! times lower than a uniform render's; otherwise it is uniform and the pilot's cost is lost.
+//!
+//! Measured (2026-12-06, Intel Xeon, 2 cores, the reference scenes at 64 spp, relMSE from two
+//! seeds, `benches/results/2026-12-06-intel-xeon.md`): the prediction runs high (veach 3.45×
+//! predicted, 2.13× lower relMSE obtained; materials 1.64×, 1.26×), and the samples placed cost
+//! more than the mean (veach 9 % more time with its pilot). Time to relMSE 1e-3 against a
+//! uniform render: veach 0.52×, materials 0.91×, cornell (predicted 1.19×: uniform) 1.03×.
+//! Tried: 2 samples per scramble instead of 4 (veach relMSE 6.8e-5 against 5.7e-5); no
+//! averaging over neighbours (veach 1.18e-4: no gain at all, the map is noise); a 5 × 5
+//! average (veach 8.7e-5, materials 4.4e-5 against 4.7e-5); a floor of 0.2 Ȳ (within noise).
 //!
 //! **The render.** At nominal sample count s (the pass bounds of `schedule.rs`, unchanged),
 //! pixel p holds its first ⌈d_p · s⌉ samples: passes, checkpoints, ranges and the image's
@@ -57,7 +65,7 @@ use rayon::prelude::*;
 use super::block::BlockRenderer;
 use super::densities::Densities;
 use super::schedule::WorkItem;
-use crate::film::BoxFilter;
+use crate::film::{BoxFilter, PixelAccum};
 use crate::sampling::{mix64, Sampler};
 use glam::UVec2;
 
@@ -106,9 +114,10 @@ pub struct AdaptiveReport {
     pub adaptive: bool,
 }
 
-/// Samples per replicate of the pilot of a render of `spp` samples per pixel: spp/32, 1 to 4.
+/// Samples per replicate of the pilot of a render of `spp` samples per pixel: spp/16, 1 to 4
+/// (half of them first, to decide whether the rest are worth taking).
 pub fn pilot_spp(spp: u32) -> u32 {
-    (spp / 32).clamp(1, 4)
+    (spp / 16).clamp(1, 4)
 }
 
 /// One pilot pixel's replicate means per channel (`None`: a replicate whose samples were all
@@ -118,6 +127,10 @@ type ReplicateMeans = [Option<[f64; 3]>; REPLICATES];
 /// Renders the pilot with `blocks` (the render's own renderer: its scene, integrator and
 /// sensor) and decides: the densities when the render is to be adaptive (`force`: whatever
 /// the predicted gain), and the report. `None` when cancelled.
+///
+/// The pilot takes its samples in two stages: the first half of each scramble's, then, unless
+/// they already predict less than [`MIN_ADAPTIVE_GAIN`] (and `force` is off), the rest; a
+/// render whose noise is even (cornell: predicted 1.2×) pays only the first.
 pub(super) fn pilot(
     blocks: &BlockRenderer,
     spp: u32,
@@ -138,36 +151,50 @@ pub(super) fn pilot(
         densities: None,
         ..*blocks
     });
-    let rows: Vec<Option<Vec<ReplicateMeans>>> = pool.install(|| {
-        (0..gh)
-            .into_par_iter()
-            .map(|j| {
-                if cancelled() {
-                    return None;
-                }
-                let row = (0..gw).map(|i| {
-                    let pixel = UVec2::new(i * PILOT_STRIDE, j * PILOT_STRIDE);
-                    let item = WorkItem { offset: pixel, size: UVec2::ONE, s0: 0, s1: m };
-                    replicates.each_ref().map(|b| {
-                        let block = b.render(&item, || false).expect("never cancelled").block;
-                        let p = block.pixel(pixel.x as i64, pixel.y as i64)?;
-                        (p.w > 0.0).then(|| p.mean())
-                    })
-                });
-                Some(row.collect())
-            })
-            .collect()
-    });
-    let mut grid = Vec::with_capacity((gw * gh) as usize);
-    for row in rows {
-        grid.extend(row?);
+    let mut sums = vec![[PixelAccum::default(); REPLICATES]; (gw * gh) as usize];
+    // samples s0..s1 of every scramble of every pilot pixel, added to `sums`
+    let take = |sums: &mut [[PixelAccum; REPLICATES]], s0: u32, s1: u32| -> Option<()> {
+        let rows: Vec<Option<()>> = pool.install(|| {
+            sums.par_chunks_mut(gw as usize)
+                .enumerate()
+                .map(|(j, row)| {
+                    if cancelled() {
+                        return None;
+                    }
+                    for (i, acc) in row.iter_mut().enumerate() {
+                        let pixel = UVec2::new(i as u32 * PILOT_STRIDE, j as u32 * PILOT_STRIDE);
+                        let item = WorkItem { offset: pixel, size: UVec2::ONE, s0, s1 };
+                        for (b, a) in replicates.iter().zip(acc.iter_mut()) {
+                            let block = b.render(&item, || false).expect("never cancelled").block;
+                            if let Some(p) = block.pixel(pixel.x as i64, pixel.y as i64) {
+                                a.add(p);
+                            }
+                        }
+                    }
+                    Some(())
+                })
+                .collect()
+        });
+        rows.into_iter().collect()
+    };
+    let decide = |sums: &[[PixelAccum; REPLICATES]]| {
+        let grid: Vec<ReplicateMeans> =
+            sums.iter().map(|reps| reps.map(|p| (p.w > 0.0).then(|| p.mean()))).collect();
+        densities(&grid, (gw as usize, gh as usize, PILOT_STRIDE as usize), width, height)
+    };
+    let first = m.div_ceil(2);
+    take(&mut sums, 0, first)?;
+    let (mut density, mut predicted_gain) = decide(&sums);
+    let mut taken = first;
+    if (force || predicted_gain >= MIN_ADAPTIVE_GAIN) && m > first {
+        take(&mut sums, first, m)?;
+        (density, predicted_gain) = decide(&sums);
+        taken = m;
     }
-    let (density, predicted_gain) =
-        densities(&grid, (gw as usize, gh as usize, PILOT_STRIDE as usize), width, height);
     let adaptive = force || predicted_gain >= MIN_ADAPTIVE_GAIN;
     let report = AdaptiveReport {
-        pilot_spp: m * REPLICATES as u32,
-        pilot_samples: grid.len() as u64 * (m as u64 * REPLICATES as u64),
+        pilot_spp: taken * REPLICATES as u32,
+        pilot_samples: sums.len() as u64 * (taken as u64 * REPLICATES as u64),
         pilot_time: start.elapsed(),
         predicted_gain,
         adaptive,
@@ -231,13 +258,21 @@ fn densities(
     if !(total > 0.0 && total.is_finite()) {
         return uniform;
     }
-    // normalise to a mean of 1 within the bounds: clamping and renormalising converge in a
-    // few rounds (the clamped pixels stay clamped)
+    // the scale λ at which clamp(λ·d, MIN, MAX) has a mean of 1 (the mean grows with λ; the
+    // bounds bracket it), by bisection, then the last rounding divided out
     let n = density.len() as f64;
-    for _ in 0..16 {
-        let mean = density.iter().sum::<f64>() / n;
-        density.iter_mut().for_each(|d| *d = (*d / mean).clamp(MIN_DENSITY, MAX_DENSITY));
+    let mean_at =
+        |l: f64| density.iter().map(|d| (l * d).clamp(MIN_DENSITY, MAX_DENSITY)).sum::<f64>() / n;
+    let (mut lo, mut hi) = (0.0, MAX_DENSITY * n / total);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if mean_at(mid) < 1.0 {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
     }
+    density.iter_mut().for_each(|d| *d = (hi * *d).clamp(MIN_DENSITY, MAX_DENSITY));
     let mean = density.iter().sum::<f64>() / n;
     density.iter_mut().for_each(|d| *d /= mean);
     let uniform_var: f64 = v.iter().sum();
@@ -285,7 +320,7 @@ mod tests {
         let (left, right) = (d[0], d[w as usize - 1]);
         assert!(left > 1.0 && right <= MIN_DENSITY + 1e-9, "{left} {right}");
         assert!(d.iter().all(|&x| (MIN_DENSITY - 1e-9..=MAX_DENSITY).contains(&x)));
-        assert!(gain > 1.2, "{gain}");
+        assert!(gain > 1.1, "{gain}");
         // every film pixel takes its pilot pixel's density: pixels (0, 0) and (1, 1) share one
         assert_eq!(d[0], d[w as usize + 1]);
         let flat: Vec<ReplicateMeans> = vec![[Some([1.0; 3]); REPLICATES]; gw * gh];

@@ -34,7 +34,7 @@ def main():
     print(f"steradian measure --target-error {e} on {len(cases)} closed-form cases, seeds 0..{a.seeds - 1}")
     print(f"{'case':<58} {'seed':>4} {'spp':>8} {'time s':>7} {'max |rel err|':>13} {'within':>6}")
     for c in cases:
-        path = os.path.join(REPO, "scenes", "validation", c["file"])
+        path = os.path.join(REPO, "scenes", "validation", os.path.basename(c["file"]))
         want = c["expected"]
         scale = max(abs(x) for x in want) or 1.0
         for seed in range(a.seeds):

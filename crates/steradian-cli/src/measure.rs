@@ -36,8 +36,9 @@ pub struct MeasureArgs {
     #[arg(long, value_name = "FILE.png")]
     picture: Option<PathBuf>,
     /// Stop once every reading (a meter's, each cell of a work plane) is within this fraction
-    /// of its value at 95 % confidence (1.96 standard errors; 0.01 = 1 %). --spp is then the
-    /// most samples taken (default 1048576).
+    /// of its value at 95 % confidence in every channel (1.96 standard errors; 0.01 = 1 %; a
+    /// channel counting at least 1 % of the brightest). --spp is then the most samples taken
+    /// (default 1048576).
     #[arg(long, value_name = "FRACTION")]
     target_error: Option<f64>,
     /// End the measurement after SECONDS: the reading is that of the whole passes finished by

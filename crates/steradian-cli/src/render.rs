@@ -73,7 +73,7 @@ pub struct RenderArgs {
     /// How samples are spread over the pixels: `auto` (a pilot of 4 independent scrambles of
     /// 1 to 4 samples in one pixel of every 2 × 2, then adaptive where it predicts at least
     /// 1.4× lower relative variance; uniform below 32 spp), `adaptive` (always, after the pilot: each pixel's
-    /// samples in proportion to its relative error, 0.5× to 16× the mean; --spp is then the
+    /// samples in proportion to its relative error, 0.75× to 16× the mean; --spp is then the
     /// mean per pixel) or `uniform` (every pixel the same).
     #[arg(long, value_enum, default_value_t = AllocationArg::Auto)]
     allocation: AllocationArg,

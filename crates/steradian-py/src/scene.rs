@@ -316,7 +316,7 @@ impl Scene {
     /// for a camera the image mean. Meters use independent random numbers, so the error is
     /// a proper standard error. Same options as `render`; `seed=None` keeps the scene's seed.
     /// `target_error=E` stops once the reading is within E of its value at 95 % confidence
-    /// (1.96 standard errors), `spp` then being the most samples taken. `batch=N` (meters)
+    /// (1.96 standard errors) in every channel, `spp` then being the most samples taken. `batch=N` (meters)
     /// makes each sample the mean of N Sobol points under a scramble of its own: the error
     /// stays a proper standard error and falls far faster; `spp` counts these samples.
     #[pyo3(

@@ -387,19 +387,21 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
         );
     }
     // the work counted as it is done: a camera sample of `path` with n branches traces n
-    // paths from its first hit; the particle tracer's samples are light paths
+    // paths from its first hit; the particle tracer's samples are light paths; rays are the
+    // ray queries made (camera, continuation and shadow rays), the unit of a ray tracer's speed
     let per_second = |n: u64| n as f64 / secs.max(1e-9) / 1e6;
     let done = out.samples_rendered();
+    let rays = format!("{:.2} Mrays/s", per_second(out.rays));
     let rate = match (&scene.integrator, out.branches) {
         (Integrator::ParticleTracer(_), _) => {
-            format!("{:.2} M light paths/s", per_second(done))
+            format!("{:.2} M light paths/s, {rays}", per_second(done))
         }
         (_, Some(n)) if n > 1 => format!(
-            "{:.2} Msamples/s, {:.2} Mpaths/s",
+            "{:.2} Msamples/s, {:.2} Mpaths/s, {rays}",
             per_second(done),
             per_second(done * n as u64)
         ),
-        _ => format!("{:.2} Msamples/s", per_second(done)),
+        _ => format!("{:.2} Msamples/s, {rays}", per_second(done)),
     };
     let resumed_note = if out.spp_rendered < out.spp {
         format!(" ({} resumed from the checkpoint)", out.spp - out.spp_rendered)

@@ -94,6 +94,8 @@ fn builtin_scene_without_arguments() {
         .and_then(|n| n.parse().ok())
         .unwrap_or_else(|| panic!("no branch count in {stdout}"));
     assert_eq!(branches > 1, stdout.contains("Mpaths/s"), "{stdout}");
+    // and the rays they traced
+    assert!(stdout.contains(" Mrays/s)"), "{stdout}");
     // the error reached; at 2 spp no adaptive pilot (auto starts at 32)
     assert!(stdout.contains("error reached: 95 % of the pixels within ±"), "{stdout}");
     assert!(!stdout.contains("allocation:"), "{stdout}");

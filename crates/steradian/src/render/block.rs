@@ -11,7 +11,7 @@ use super::schedule::WorkItem;
 use crate::film::{ImageBlock, ReconstructionFilter};
 use crate::integrator::{estimate_irradiance, Integrator};
 use crate::sampling::{mix64, PixelSampler, Sampler, SamplerKind};
-use crate::scene::Scene;
+use crate::scene::{rays_traced_on_this_thread, Scene};
 use crate::sensor::{film_position, Sensor, SensorKind};
 use crate::Spectrum;
 
@@ -46,6 +46,8 @@ pub(super) struct RenderedBlock {
     pub block: ImageBlock,
     /// Samples taken, all pixels.
     pub samples: u64,
+    /// Ray queries made for them.
+    pub rays: u64,
 }
 
 impl<'a> BlockRenderer<'a> {
@@ -111,6 +113,8 @@ impl<'a> BlockRenderer<'a> {
             ImageBlock::with_clip(offset, size, &self.filter, [width as i64, height as i64])
                 .with_aov_layers(self.aov_layers);
         let (mut dropped, mut samples) = (0u64, 0u64);
+        // the block is rendered on this one thread
+        let rays_before = rays_traced_on_this_thread();
         for y in offset.y..offset.y + size.y {
             if cancelled() {
                 return None;
@@ -146,7 +150,8 @@ impl<'a> BlockRenderer<'a> {
             }
         }
         block.add_dropped(dropped);
-        Some(RenderedBlock { block, samples })
+        let rays = rays_traced_on_this_thread() - rays_before;
+        Some(RenderedBlock { block, samples, rays })
     }
 
     /// Sample `index` of a meter as a randomised quasi-Monte Carlo replicate: the mean of

@@ -199,6 +199,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
     };
     let samples_total = samples_at(end);
     let samples_done = AtomicU64::new(samples_at(first));
+    let rays = AtomicU64::new(0);
     let progress = |done: u64| {
         if let Some(cb) = opts.progress {
             cb(Progress { samples_done: done, samples_total, elapsed: start.elapsed() });
@@ -234,6 +235,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
             threads,
             &cancelled,
             &report,
+            &rays,
             &mut add_pass,
         );
     } else {
@@ -260,6 +262,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
                 let tx = tx.clone();
                 let (next, gate, blocks) = (&next, &gate, &blocks);
                 let (samples_done, cancelled, progress) = (&samples_done, &cancelled, &progress);
+                let rays = &rays;
                 scope.spawn(move || loop {
                     let i = next.fetch_add(1, Ordering::Relaxed);
                     if i >= items.len() || cancelled() {
@@ -269,6 +272,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
                     // an item cut short by a cancel is not sent, so its pass is never merged
                     let Some(r) = blocks.render(&items[i], cancelled) else { break };
                     let n = r.samples;
+                    rays.fetch_add(r.rays, Ordering::Relaxed);
                     progress(samples_done.fetch_add(n, Ordering::Relaxed) + n);
                     if tx.send((i, r.block)).is_err() {
                         break;
@@ -297,6 +301,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         target_reached: reached.load(Ordering::Relaxed),
         film_samples: samples_at(sums.end()) - samples_at(sums.first()),
         rendered_samples: samples_at(sums.end()) - samples_at(first),
+        rays: rays.into_inner(),
         adaptive,
         sums,
     })
@@ -350,8 +355,29 @@ mod tests {
         assert_eq!((one.spp, one.dropped_samples, one.interrupted), (9, 0, false));
         assert!(one.image().data.iter().any(|&v| v > 0.0), "the plane is lit");
         for threads in [2, 3, 5] {
-            assert_eq!(bits(&render_with(threads)), bits(&one), "{threads} threads");
+            let other = render_with(threads);
+            assert_eq!(bits(&other), bits(&one), "{threads} threads");
+            // the ray queries are the samples' own, whatever thread made them
+            assert_eq!(other.rays, one.rays, "{threads} threads");
         }
+        // each camera sample traces its camera ray, two branches their paths and shadow rays
+        let samples = one.samples_rendered();
+        assert!(one.rays > 3 * samples && one.rays < 50 * samples, "{} {samples}", one.rays);
+    }
+
+    /// A camera that looks away from the plane into the empty sky makes one ray query per
+    /// sample, counted exactly.
+    #[test]
+    fn rays_are_counted() {
+        let mut job = job(Branches::Fixed(2));
+        let away = Transform::look_at(Vec3::new(0.0, 0.0, 3.0), Vec3::new(0.0, 0.0, 9.0), Vec3::Y)
+            .expect("a valid camera frame");
+        let camera = Perspective::new(away, 0.8, 1.5, 0.01, 100.0).expect("valid camera");
+        job.scene.sensors[0].kind = SensorKind::Perspective(camera);
+        let out = render(&job, &RenderOptions { threads: Some(2), ..Default::default() })
+            .expect("renders");
+        assert_eq!(out.samples_rendered(), 24 * 16 * 9);
+        assert_eq!(out.rays, out.samples_rendered());
     }
 
     #[test]

@@ -125,6 +125,7 @@ mod tests {
             target_reached: false,
             film_samples: 4,
             rendered_samples: 4,
+            rays: 0,
             adaptive: None,
         };
         let m = Measurement::from_render(&out, 0, Quantity::Radiance);

@@ -163,6 +163,9 @@ pub struct RenderOutput {
     pub film_samples: u64,
     /// Samples rendered by this call, all pixels.
     pub rendered_samples: u64,
+    /// Ray queries (closest hits and shadow rays) made by this call's passes, pilots not
+    /// counted: the work behind `elapsed`, for rays per second.
+    pub rays: u64,
     /// The adaptive pilot and what it decided, when one ran.
     pub adaptive: Option<super::AdaptiveReport>,
 }

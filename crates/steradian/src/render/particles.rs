@@ -9,7 +9,7 @@
 //! any thread count and a stopped render holds only complete passes.
 
 use std::collections::BTreeMap;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicU64, AtomicUsize, Ordering};
 use std::sync::mpsc;
 
 use glam::UVec2;
@@ -18,11 +18,12 @@ use super::options::Plan;
 use super::Job;
 use crate::film::{Film, SplatBlock};
 use crate::integrator::ParticleTracer;
+use crate::scene::rays_traced_on_this_thread;
 
 /// Renders the passes `first..end` of `plan` with the particle tracer `tracer` on `threads`
 /// worker threads, handing each finished pass, in order, to `pass_done` (as a film holding
-/// one unit-weight sample per pixel); `report` counts light paths as passes finish; once
-/// `cancelled`, the passes under way are abandoned.
+/// one unit-weight sample per pixel); `report` counts light paths as passes finish and `rays`
+/// the ray queries they made; once `cancelled`, the passes under way are abandoned.
 pub(super) fn render_particles(
     job: &Job,
     tracer: &ParticleTracer,
@@ -31,6 +32,7 @@ pub(super) fn render_particles(
     threads: usize,
     cancelled: &(dyn Fn() -> bool + Sync),
     report: &(dyn Fn(u64) + Sync),
+    rays: &AtomicU64,
     pass_done: &mut dyn FnMut(u32, Film),
 ) {
     let (scene, sensor, sampler) = (&job.scene, plan.sensor, plan.sampler);
@@ -51,6 +53,7 @@ pub(super) fn render_particles(
                     break;
                 }
                 let mut block = SplatBlock::new(width, height, filter);
+                let rays_before = rays_traced_on_this_thread();
                 for y in 0..height {
                     if cancelled() {
                         return;
@@ -60,6 +63,7 @@ pub(super) fn render_particles(
                         tracer.trace(scene, sensor, &mut s, &mut block);
                     }
                 }
+                rays.fetch_add(rays_traced_on_this_thread() - rays_before, Ordering::Relaxed);
                 report(paths_per_pass);
                 if tx.send((pass, block)).is_err() {
                     break;

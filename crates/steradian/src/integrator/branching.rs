@@ -16,6 +16,11 @@
 //!   μ the pixel's mean and ε = 10⁻² × the film's mean squared, after clamping values above the
 //!   99.9th percentile; C(N) = rays traced per camera sample + [`CAMERA_SAMPLE_COST`], a count,
 //!   not a clock, so that the choice and the image are the same on every run;
+//! - V_w is also measured on its own, as the spread of the 16-branch candidate's branches
+//!   about their camera sample's mean, unclamped (weighted as above), and the larger of the
+//!   two counts: the clamp that keeps fireflies from deciding the fit also hides the rare
+//!   bright paths that branching averages, and 16 branches per sample see them far more often
+//!   than one;
 //! - the model is fitted to the five candidates ([`best_count`]) and the least modelled V·C
 //!   wins (powers of two keep N·spp a power of two, where Sobol points stratify best). S is the
 //!   largest power of two up to min(spp, 16) that keeps the pilot within 1/4 of a one-branch
@@ -27,6 +32,11 @@
 //!   −26 % on cornell (3 → 16 branches), within noise on materials and veach.
 //! - Random pixels, not a grid, which missed the edges: the point-light scene holds 80 % of its
 //!   error at 16 branches on 1 % of its pixels.
+//! - V_w at least the 16 branches' own spread (2026-12-06, AMD EPYC, 2 cores, 64 spp, e × t
+//!   from three pairs of seeds, `benches/results/2026-12-06-amd-epyc.md`): `glossy_spheres`
+//!   chose 2 branches on 6 of 8 seeds and now 4–16, 0.42× → 0.92× Mitsuba's speed at equal
+//!   error; seven reference scenes whose choice moved: e × t 0.78–0.94× of before on six,
+//!   1.14× on `serialized` (geometric mean 0.89×); cornell, materials and veach keep 16.
 
 use glam::UVec2;
 use rayon::prelude::*;
@@ -249,8 +259,23 @@ fn choose(pixels: &[PilotPixel], replicates: u32, spp: u32) -> Pilot {
         CAMERA_SAMPLE_COST
             + pixels.iter().map(|p| p.rays[c]).sum::<u64>() as f64 / samples_per_candidate
     });
+    // V_w also from the spread of the largest candidate's branches about their own camera
+    // sample's mean, unclamped: its many branches see the rare bright paths that the clamp
+    // removes often enough to count them (as if the branches were independent: where they are
+    // stratified this overstates V_w, and the count errs upwards)
+    let last = CANDIDATES.len() - 1;
+    let n_last = CANDIDATES[last] as f64;
+    let mut var_branch_within = 0.0;
+    for (p, &mu) in pixels.iter().zip(&mus) {
+        let w = 1.0 / (mu * mu + eps);
+        for v in p.values[last].chunks_exact(1 + CANDIDATES[last] as usize) {
+            let m = v[1..].iter().sum::<f64>() / n_last;
+            let s2 = v[1..].iter().map(|x| (x - m) * (x - m)).sum::<f64>() / (n_last - 1.0);
+            var_branch_within += w * s2 / (r * s) as f64;
+        }
+    }
     let Fit { cost_first, cost_branch, var_first, var_branch, branches } =
-        best_count(variance, cost);
+        best_count(variance, cost, var_branch_within);
     let samples = samples_per_candidate as u64 * CANDIDATES.len() as u64;
     Pilot {
         samples,
@@ -282,14 +307,18 @@ struct Fit {
 /// proportion, as the others) and C(N) = C₁ + N·C₂; then the candidate with the least modelled
 /// V(N)·C(N), with V_b and V_w taken as at least 0 (ties go to fewer branches). The fit pools
 /// the five measurements, so that one candidate's noise does not decide alone.
-fn best_count(variance: [f64; CANDIDATES.len()], cost: [f64; CANDIDATES.len()]) -> Fit {
+fn best_count(
+    variance: [f64; CANDIDATES.len()],
+    cost: [f64; CANDIDATES.len()],
+    var_branch_within: f64,
+) -> Fit {
     let n: [f64; CANDIDATES.len()] = CANDIDATES.map(|n| n as f64);
     let (cost_first, cost_branch) = fit_line(&n, &cost, &[1.0; CANDIDATES.len()]);
     let vmax = variance.iter().fold(0.0f64, |m, &v| m.max(v));
     let tiny = (1e-12 * vmax) * (1e-12 * vmax) + f64::MIN_POSITIVE;
     let (var_first, var_branch) =
         fit_line(&n.map(|n| 1.0 / n), &variance, &variance.map(|v| 1.0 / (v * v + tiny)));
-    let (vb, vw) = (var_first.max(0.0), var_branch.max(0.0));
+    let (vb, vw) = (var_first.max(0.0), var_branch.max(var_branch_within).max(0.0));
     let model = |n: f64| (vb + vw / n) * (cost_first + n * cost_branch);
     let mut best = 0;
     for c in 1..CANDIDATES.len() {
@@ -384,6 +413,32 @@ mod tests {
         assert_eq!((c.samples, c.spp, c.replicates), (4 * CANDIDATES.len() as u64, 1, 4));
     }
 
+    /// Rare bright branches (3 of the 16-branch candidate's 2,048 branch values, above the
+    /// clamp that keeps them out of the fit) still count, through the spread of the 16
+    /// branches of their own camera sample: one branch without them, many with them.
+    #[test]
+    fn rare_bright_branches_are_counted() {
+        let first = |rep: u32, i: u32| ((rep * 4 + i) % 5) as f64;
+        let calm = pixel(8, 4, first, |_, _, _, _| 1.0);
+        let c = choose(&[calm.clone(), calm.clone(), calm.clone(), calm.clone()], 8, 4);
+        assert_eq!((c.branches, c.var_branch), (1, 0.0), "{c:?}");
+        let bright =
+            pixel(
+                8,
+                4,
+                first,
+                |n, rep, i, b| {
+                    if n == 16 && rep < 3 && i == 0 && b == 0 {
+                        1000.0
+                    } else {
+                        1.0
+                    }
+                },
+            );
+        let c = choose(&[bright, calm.clone(), calm.clone(), calm], 8, 4);
+        assert!(c.branches >= 8, "{c:?}");
+    }
+
     /// The model's optimum N* = √(C₁·V_w/(C₂·V_b)), among the candidates.
     #[test]
     fn the_count_follows_the_model() {
@@ -391,6 +446,7 @@ mod tests {
             let p = best_count(
                 CANDIDATES.map(|n| vb + vw / n as f64),
                 CANDIDATES.map(|n| c1 + c2 * n as f64),
+                0.0,
             );
             assert!(
                 (p.var_first - vb).abs() <= 1e-9 * (vb + vw)
@@ -413,6 +469,6 @@ mod tests {
         // one candidate's noise does not decide: V(4) measured 30 % low
         let mut v = CANDIDATES.map(|n| 1.0 + 1.0 / n as f64);
         v[2] *= 0.7;
-        assert_eq!(best_count(v, CANDIDATES.map(|n| 2.0 + 2.0 * n as f64)).branches, 1);
+        assert_eq!(best_count(v, CANDIDATES.map(|n| 2.0 + 2.0 * n as f64), 0.0).branches, 1);
     }
 }

@@ -18,6 +18,7 @@ import sys as _sys
 
 from ._steradian import (
     Measurement,
+    RenderResult,
     Scene,
     SceneError,
     Sums,
@@ -36,6 +37,7 @@ _sys.modules[__name__ + ".radiometry"] = radiometry
 
 __all__ = [
     "Measurement",
+    "RenderResult",
     "Scene",
     "SceneError",
     "Sums",

@@ -10,6 +10,7 @@ from steradian import radiometry as radiometry
 
 __all__ = [
     "Measurement",
+    "RenderResult",
     "Scene",
     "SceneError",
     "Sums",
@@ -59,6 +60,35 @@ class Measurement:
     def target_reached(self) -> bool: ...
 
 @final
+class RenderResult:
+    """A finished render: the image, each pixel's standard error, what it spent and reached."""
+
+    @property
+    def image(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def stderr(self) -> npt.NDArray[np.float32]: ...
+    @property
+    def spp(self) -> int: ...
+    @property
+    def samples(self) -> int: ...
+    @property
+    def rays(self) -> int: ...
+    @property
+    def elapsed(self) -> float: ...
+    @property
+    def error_reached(self) -> float: ...
+    @property
+    def target_reached(self) -> bool: ...
+    @property
+    def interrupted(self) -> bool: ...
+    @property
+    def dropped_samples(self) -> int: ...
+    @property
+    def branches(self) -> Optional[int]: ...
+    @property
+    def adaptive(self) -> bool: ...
+
+@final
 class Scene:
     """A loaded scene (immutable)."""
 
@@ -77,6 +107,21 @@ class Scene:
         target_error: Optional[float] = None,
         allocation: Literal["auto", "adaptive", "uniform"] = "auto",
     ) -> npt.NDArray[np.float32]: ...
+    def render_result(
+        self,
+        spp: Optional[int] = None,
+        seed: Optional[int] = 0,
+        sensor: Optional[_Sensor] = None,
+        *,
+        quantity: Literal["radiance", "irradiance", "illuminance"] = "radiance",
+        threads: Optional[int] = None,
+        progress: Optional[_Progress] = None,
+        checkpoint: Optional[_Path] = None,
+        checkpoint_interval: float = 60.0,
+        time_limit: Optional[float] = None,
+        target_error: Optional[float] = None,
+        allocation: Literal["auto", "adaptive", "uniform"] = "auto",
+    ) -> RenderResult: ...
     def measure(
         self,
         spp: Optional[int] = None,

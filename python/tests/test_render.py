@@ -152,3 +152,40 @@ def test_moment_and_aov_layers_come_after_rgb_as_in_mitsuba():
     assert image.shape == (5, 7, 8)
     assert np.allclose(image[..., :3], [0.25, 1.5, 3], rtol=1e-6)
     assert np.all(image[..., 6] == 1.0) and np.all(image[..., 7] == 0.0)
+
+
+# A diffuse plane (rho = 0.5) under a uniform sky (L = 1) seen from above: every pixel is
+# 0.5, noisy through the sky's sampling, so a target error stops well before the cap.
+PLANE = """<scene version="3.0.0">
+    <integrator type="path"><integer name="max_depth" value="2"/></integrator>
+    <emitter type="constant"><rgb name="radiance" value="1"/></emitter>
+    <shape type="rectangle"><transform name="to_world"><scale value="100"/></transform>
+        <bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></shape>
+    <sensor type="perspective">
+        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <sampler type="independent"/>
+        <film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="6"/></film>
+    </sensor>
+</scene>"""
+
+
+def test_render_result_is_the_image_with_its_errors_and_what_it_spent(cornell):
+    r = cornell.render_result(spp=3, seed=2)
+    assert np.array_equal(r.image, cornell.render(spp=3, seed=2))
+    assert r.stderr.shape == r.image.shape and (r.stderr >= 0).all() and r.stderr.max() > 0
+    assert (r.spp, r.samples, r.interrupted, r.target_reached) == (3, 3 * 48 * 48, False, False)
+    # every camera sample traces its camera ray and its branches' paths
+    assert r.rays > r.samples and r.branches is not None and r.elapsed > 0
+    assert r.error_reached > 0 and "spp" in repr(r)
+
+
+def test_render_result_reports_the_target_error_reached():
+    e = 0.05
+    r = steradian.load_string(PLANE).render_result(target_error=e, seed=1)
+    assert r.target_reached and not r.interrupted and r.error_reached <= e
+    assert 64 <= r.spp < 1 << 16
+    # the rule it met: 95 % of the pixels within e at 1.96 standard errors, and the truth
+    # (0.5) within e of at least 85 % of them
+    within = np.abs(r.image[..., 1] - 0.5) <= e * 0.5
+    assert (1.96 * r.stderr[..., 1] <= e * r.image[..., 1] * 1.0001).mean() >= 0.95
+    assert within.mean() >= 0.85

@@ -57,6 +57,7 @@ fn _steradian(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add("SceneError", py.get_type::<SceneError>())?;
     m.add_class::<scene::Scene>()?;
     m.add_class::<scene::Measurement>()?;
+    m.add_class::<scene::RenderResult>()?;
     m.add_class::<sums::Sums>()?;
     m.add_function(wrap_pyfunction!(scene::load_file, m)?)?;
     m.add_function(wrap_pyfunction!(scene::load_string, m)?)?;

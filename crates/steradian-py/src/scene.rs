@@ -9,8 +9,8 @@ use pyo3::exceptions::{PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict};
 use steradian::render::{
-    render, Checkpoint, GridReading, Job, PixelQuantity, RenderError, RenderOptions, RenderOutput,
-    RenderSums, SampleAllocation,
+    image_error, render, Checkpoint, GridReading, Job, PixelQuantity, RenderError, RenderOptions,
+    RenderOutput, RenderSums, SampleAllocation,
 };
 use steradian::sensor::{Quantity, SensorKind};
 
@@ -139,6 +139,99 @@ impl Scene {
         }
     }
 
+    /// The render behind `render` and `render_result` (see `render` for the parameters).
+    #[allow(clippy::too_many_arguments)]
+    fn render_output(
+        &self,
+        py: Python<'_>,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        sensor: Option<SensorArg>,
+        quantity: &str,
+        threads: Option<usize>,
+        progress: Option<Py<PyAny>>,
+        checkpoint: Option<PathBuf>,
+        checkpoint_interval: f64,
+        time_limit: Option<f64>,
+        target_error: Option<f64>,
+        allocation: &str,
+    ) -> PyResult<RenderOutput> {
+        let time_limit = time_limit_arg(time_limit)?;
+        let pixel_quantity = pixel_quantity(quantity)?;
+        let allocation = match allocation {
+            "auto" => SampleAllocation::Auto,
+            "adaptive" => SampleAllocation::Adaptive,
+            "uniform" => SampleAllocation::Uniform,
+            other => {
+                return Err(PyValueError::new_err(format!(
+                    "allocation must be 'auto', 'adaptive' or 'uniform', not {other:?}"
+                )))
+            }
+        };
+        let sensor = self.sensor(sensor)?;
+        let scene = &*self.inner;
+        if !(checkpoint_interval.is_finite() && checkpoint_interval >= 0.0) {
+            return Err(PyValueError::new_err("checkpoint_interval must be at least 0 seconds"));
+        }
+        let (resume, scene_digest) = match &checkpoint {
+            Some(path) => {
+                let resume = if path.exists() {
+                    Some(Checkpoint::read(path).map_err(PyValueError::new_err)?)
+                } else {
+                    None
+                };
+                let digest =
+                    steradian_mitsuba::scene_digest(scene, &self.defines, self.source.as_deref())
+                        .map_err(PyOSError::new_err)?;
+                (resume, digest)
+            }
+            None => (None, 0),
+        };
+        let interval = Duration::from_secs_f64(checkpoint_interval);
+        let writer = checkpoint.as_ref().map(|p| Checkpoint::new(p, interval));
+        // a failed save leaves the previous checkpoint; the render goes on
+        let save = |sums: &RenderSums| {
+            if let Some(w) = &writer {
+                w.maybe_save(sums);
+            }
+        };
+        run_interruptible(py, progress, |cancel, report| {
+            let opts = RenderOptions {
+                spp,
+                seed,
+                sampler: None,
+                threads,
+                sensor: Some(sensor),
+                cancel: Some(cancel),
+                progress: Some(report),
+                quantity: pixel_quantity,
+                resume,
+                on_pass: writer.as_ref().map(|_| &save as &(dyn Fn(&RenderSums) + Sync)),
+                scene_digest,
+                time_limit,
+                target_error,
+                allocation,
+                ..Default::default()
+            };
+            let out = render(scene, &opts).map_err(|e| match (e, &checkpoint) {
+                (RenderError::Resume(e), Some(path)) => PyValueError::new_err(format!(
+                    "cannot resume from {}: the checkpoint {e}",
+                    path.display()
+                )),
+                (e, _) => render_error(e),
+            })?;
+            if let Some(w) = &writer {
+                if out.interrupted && !out.target_reached {
+                    w.save(&out.sums).map_err(PyOSError::new_err)?;
+                } else {
+                    // the image holds every sample: the checkpoint has done its work
+                    w.remove();
+                }
+            }
+            Ok::<_, PyErr>(out)
+        })?
+    }
+
     /// Renders sensor `sensor` as `measure` and `measure_grid` read it: (spp, seed, sensor,
     /// threads), interruptible, with a time limit, a target error and Sobol batches.
     fn render_meter(
@@ -229,86 +322,66 @@ impl Scene {
         target_error: Option<f64>,
         allocation: &str,
     ) -> PyResult<Bound<'py, PyAny>> {
-        let time_limit = time_limit_arg(time_limit)?;
-        let pixel_quantity = pixel_quantity(quantity)?;
-        let allocation = match allocation {
-            "auto" => SampleAllocation::Auto,
-            "adaptive" => SampleAllocation::Adaptive,
-            "uniform" => SampleAllocation::Uniform,
-            other => {
-                return Err(PyValueError::new_err(format!(
-                    "allocation must be 'auto', 'adaptive' or 'uniform', not {other:?}"
-                )))
-            }
-        };
-        let sensor = self.sensor(sensor)?;
-        let scene = &*self.inner;
-        if !(checkpoint_interval.is_finite() && checkpoint_interval >= 0.0) {
-            return Err(PyValueError::new_err("checkpoint_interval must be at least 0 seconds"));
-        }
-        let (resume, scene_digest) = match &checkpoint {
-            Some(path) => {
-                let resume = if path.exists() {
-                    Some(Checkpoint::read(path).map_err(PyValueError::new_err)?)
-                } else {
-                    None
-                };
-                let digest =
-                    steradian_mitsuba::scene_digest(scene, &self.defines, self.source.as_deref())
-                        .map_err(PyOSError::new_err)?;
-                (resume, digest)
-            }
-            None => (None, 0),
-        };
-        let interval = Duration::from_secs_f64(checkpoint_interval);
-        let writer = checkpoint.as_ref().map(|p| Checkpoint::new(p, interval));
-        // a failed save leaves the previous checkpoint; the render goes on
-        let save = |sums: &RenderSums| {
-            if let Some(w) = &writer {
-                w.maybe_save(sums);
-            }
-        };
-        let out = run_interruptible(py, progress, |cancel, report| {
-            let opts = RenderOptions {
-                spp,
-                seed,
-                sampler: None,
-                threads,
-                sensor: Some(sensor),
-                cancel: Some(cancel),
-                progress: Some(report),
-                quantity: pixel_quantity,
-                resume,
-                on_pass: writer.as_ref().map(|_| &save as &(dyn Fn(&RenderSums) + Sync)),
-                scene_digest,
-                time_limit,
-                target_error,
-                allocation,
-                ..Default::default()
-            };
-            let out = render(scene, &opts).map_err(|e| match (e, &checkpoint) {
-                (RenderError::Resume(e), Some(path)) => PyValueError::new_err(format!(
-                    "cannot resume from {}: the checkpoint {e}",
-                    path.display()
-                )),
-                (e, _) => render_error(e),
-            })?;
-            if let Some(w) = &writer {
-                if out.interrupted && !out.target_reached {
-                    w.save(&out.sums).map_err(PyOSError::new_err)?;
-                } else {
-                    // the image holds every sample: the checkpoint has done its work
-                    w.remove();
-                }
-            }
-            Ok::<_, PyErr>(out)
-        })??;
+        let out = self.render_output(
+            py,
+            spp,
+            seed,
+            sensor,
+            quantity,
+            threads,
+            progress,
+            checkpoint,
+            checkpoint_interval,
+            time_limit,
+            target_error,
+            allocation,
+        )?;
         let aovs = out.aov_images();
         if aovs.is_empty() {
             to_array(py, &out.image())
         } else {
             to_channels_array(py, &out.image(), &aovs)
         }
+    }
+
+    /// Renders as `render` does (the same parameters, the same image bit for bit) and returns
+    /// a `RenderResult`: the image with each pixel's standard error, the samples spent, the
+    /// error reached and the work done, what `steradian render` prints in its summary.
+    #[pyo3(
+        signature = (spp=None, seed=Some(0), sensor=None, *, quantity="radiance", threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None, target_error=None, allocation="auto"),
+        text_signature = "(self, /, spp=None, seed=0, sensor=None, *, quantity='radiance', threads=None, progress=None, checkpoint=None, checkpoint_interval=60.0, time_limit=None, target_error=None, allocation='auto')"
+    )]
+    #[allow(clippy::too_many_arguments)]
+    fn render_result(
+        &self,
+        py: Python<'_>,
+        spp: Option<u32>,
+        seed: Option<u64>,
+        sensor: Option<SensorArg>,
+        quantity: &str,
+        threads: Option<usize>,
+        progress: Option<Py<PyAny>>,
+        checkpoint: Option<PathBuf>,
+        checkpoint_interval: f64,
+        time_limit: Option<f64>,
+        target_error: Option<f64>,
+        allocation: &str,
+    ) -> PyResult<RenderResult> {
+        let out = self.render_output(
+            py,
+            spp,
+            seed,
+            sensor,
+            quantity,
+            threads,
+            progress,
+            checkpoint,
+            checkpoint_interval,
+            time_limit,
+            target_error,
+            allocation,
+        )?;
+        RenderResult::new(py, &out)
     }
 
     /// Reads a sensor: its value per RGB channel with the standard error of that value, in the
@@ -578,6 +651,138 @@ impl Scene {
             s.shapes.len(),
             s.emitters.len(),
             s.sensors.len()
+        )
+    }
+}
+
+/// A finished render (`Scene.render_result`): the image, each pixel's standard error and
+/// what the render spent and reached.
+#[pyclass(frozen, module = "steradian._steradian")]
+pub struct RenderResult {
+    image: Py<PyAny>,
+    stderr: Py<PyAny>,
+    spp: u32,
+    samples: u64,
+    rays: u64,
+    elapsed: f64,
+    error_reached: f64,
+    target_reached: bool,
+    interrupted: bool,
+    dropped_samples: u64,
+    branches: Option<u32>,
+    adaptive: bool,
+}
+
+impl RenderResult {
+    fn new(py: Python<'_>, out: &RenderOutput) -> PyResult<RenderResult> {
+        let aovs = out.aov_images();
+        let image = if aovs.is_empty() {
+            to_array(py, &out.image())?
+        } else {
+            to_channels_array(py, &out.image(), &aovs)?
+        };
+        Ok(RenderResult {
+            image: image.unbind(),
+            stderr: to_array(py, &out.stderr_image())?.unbind(),
+            spp: out.spp,
+            samples: out.samples(),
+            rays: out.rays,
+            elapsed: out.elapsed.as_secs_f64(),
+            error_reached: image_error(out.film()),
+            target_reached: out.target_reached,
+            interrupted: out.interrupted && !out.target_reached,
+            dropped_samples: out.dropped_samples,
+            branches: out.branches,
+            adaptive: out.adaptive.is_some_and(|a| a.adaptive),
+        })
+    }
+}
+
+#[pymethods]
+impl RenderResult {
+    /// The image, as `Scene.render` returns it: float32, shape (H, W, 3) (or 3 + k with AOV
+    /// layers), in the sensor's unit.
+    #[getter]
+    fn image(&self, py: Python<'_>) -> Py<PyAny> {
+        self.image.clone_ref(py)
+    }
+
+    /// Each pixel's standard error of the mean, float32, shape (H, W, 3), same unit.
+    #[getter]
+    fn stderr(&self, py: Python<'_>) -> Py<PyAny> {
+        self.stderr.clone_ref(py)
+    }
+
+    /// Samples per pixel in the image (the mean per pixel of an adaptive render); with
+    /// `target_error`, where the render stopped.
+    #[getter]
+    fn spp(&self) -> u32 {
+        self.spp
+    }
+
+    /// Samples in the image, all pixels.
+    #[getter]
+    fn samples(&self) -> u64 {
+        self.samples
+    }
+
+    /// Ray queries (closest hits and shadow rays) made by this call's passes.
+    #[getter]
+    fn rays(&self) -> u64 {
+        self.rays
+    }
+
+    /// Seconds the render took (pilots included; loading not).
+    #[getter]
+    fn elapsed(&self) -> f64 {
+        self.elapsed
+    }
+
+    /// The relative error that 95 % of the pixels have reached at 95 % confidence (1.96
+    /// standard errors over the pixel's value, a value counting at least 1 % of the image's
+    /// mean): `target_error`'s rule, which the render met when this is at most its target.
+    #[getter]
+    fn error_reached(&self) -> f64 {
+        self.error_reached
+    }
+
+    /// Whether the render stopped because it reached its `target_error`.
+    #[getter]
+    fn target_reached(&self) -> bool {
+        self.target_reached
+    }
+
+    /// Whether the render ended before its samples or its target error (a time limit, or
+    /// stopped).
+    #[getter]
+    fn interrupted(&self) -> bool {
+        self.interrupted
+    }
+
+    /// NaN/Inf samples dropped (never averaged in).
+    #[getter]
+    fn dropped_samples(&self) -> u64 {
+        self.dropped_samples
+    }
+
+    /// `path`'s branches per camera sample; `None` for other integrators.
+    #[getter]
+    fn branches(&self) -> Option<u32> {
+        self.branches
+    }
+
+    /// Whether the samples were spread by adaptive sampling (`allocation`).
+    #[getter]
+    fn adaptive(&self) -> bool {
+        self.adaptive
+    }
+
+    fn __repr__(&self) -> String {
+        format!(
+            "RenderResult({} spp, 95 % of the pixels within ±{:.2} %, {:.2} s)",
+            self.spp,
+            self.error_reached * 100.0,
+            self.elapsed
         )
     }
 }

@@ -72,16 +72,9 @@ pub fn reading_reached(v: [f64; 3], s: [f64; 3], e: f64) -> bool {
 }
 
 /// Whether the image on `film` (holding `spp` samples per pixel) has reached relative error
-/// `e` (see the module docs).
+/// `e` (see the module docs): [`image_error`] is at most `e`.
 pub fn image_reached(film: &Film, spp: u32, e: f64) -> bool {
-    if spp < MIN_SAMPLES_FOR_TARGET {
-        return false;
-    }
-    let y = pixel_luminances(film);
-    let n = y.len().max(1) as f64;
-    let floor = IMAGE_ERROR_FLOOR * (y.iter().map(|(v, _)| v).sum::<f64>() / n).abs();
-    let reached = y.iter().filter(|(v, s)| CONFIDENCE_Z * s <= e * (v.abs() + floor)).count();
-    reached as f64 >= IMAGE_PIXEL_QUANTILE * n
+    spp >= MIN_SAMPLES_FOR_TARGET && image_error(film) <= e
 }
 
 /// The relative error that [`IMAGE_PIXEL_QUANTILE`] of the pixels of `film` have reached at
@@ -98,9 +91,12 @@ pub fn image_error(film: &Film) -> f64 {
             e => e,
         })
         .collect();
-    e.sort_by(f64::total_cmp);
-    let k = ((IMAGE_PIXEL_QUANTILE * n).ceil() as usize).clamp(1, e.len().max(1));
-    e.get(k - 1).copied().unwrap_or(0.0)
+    if e.is_empty() {
+        return 0.0;
+    }
+    // the k-th smallest, k = ⌈quantile · n⌉: linear time, as it runs after every pass
+    let k = ((IMAGE_PIXEL_QUANTILE * n).ceil() as usize).clamp(1, e.len());
+    *e.select_nth_unstable_by(k - 1, f64::total_cmp).1
 }
 
 /// Each pixel's luminance and the bound Σ w_c σ_c on its standard error.

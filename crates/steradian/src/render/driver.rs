@@ -47,14 +47,14 @@ pub fn plan(job: &Job, opts: &RenderOptions) -> Result<RenderPlan, RenderError> 
     let plan = Plan::new(job, opts)?;
     let pool = thread_pool(opts)?;
     let (integrator, pilot, mut header) = resolve_branches(job, &plan, opts, &pool);
-    let (densities, adaptive) =
-        resolve_allocation(&job.scene, &integrator, &plan, opts, &pool, &|| false)?;
-    header.allocation = densities.as_ref().map_or(0, |d| d.digest);
+    let (_, adaptive) =
+        resolve_allocation(&job.scene, &integrator, &plan, opts, &pool, &|| false, &mut header)?;
     Ok(RenderPlan { header, pass_bounds: pass_bounds(&job.integrator, plan.spp), pilot, adaptive })
 }
 
 /// The adaptive pilot where the options call for one (`adaptive.rs`): the densities when the
-/// render is adaptive, and what the pilot found. A resumed render follows its sums.
+/// render is adaptive, recorded in `header`, and what the pilot found. A resumed render
+/// follows its sums.
 fn resolve_allocation(
     scene: &crate::scene::Scene,
     integrator: &Integrator,
@@ -62,6 +62,7 @@ fn resolve_allocation(
     opts: &RenderOptions,
     pool: &rayon::ThreadPool,
     cancelled: &(impl Fn() -> bool + Sync),
+    header: &mut super::SumsHeader,
 ) -> Result<(Option<Densities>, Option<AdaptiveReport>), RenderError> {
     let applies = plan.quantity == PixelQuantity::Sensor
         && !plan.meter
@@ -88,10 +89,12 @@ fn resolve_allocation(
     }
     let blocks = BlockRenderer::new(scene, integrator, plan);
     let force = mode == SampleAllocation::Adaptive;
-    Ok(match adaptive::pilot(&blocks, plan.spp, force, pool, cancelled) {
+    let (densities, report) = match adaptive::pilot(&blocks, plan.spp, force, pool, cancelled) {
         Some((densities, report)) => (densities, Some(report)),
         None => (None, None),
-    })
+    };
+    header.allocation = densities.as_ref().map_or(0, |d| d.digest);
+    Ok((densities, report))
 }
 
 fn thread_pool(opts: &RenderOptions) -> Result<rayon::ThreadPool, RenderError> {
@@ -167,8 +170,7 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
     let pool = thread_pool(opts)?;
     let (integrator, pilot_run, mut header) = resolve_branches(job, &plan, opts, &pool);
     let (densities, adaptive) =
-        resolve_allocation(scene, &integrator, &plan, opts, &pool, &stopped)?;
-    header.allocation = densities.as_ref().map_or(0, |d| d.digest);
+        resolve_allocation(scene, &integrator, &plan, opts, &pool, &stopped, &mut header)?;
     let samples_at = |s: u32| match &densities {
         Some(d) => d.samples_at(s),
         None => width as u64 * height as u64 * s as u64,

@@ -659,17 +659,46 @@ impl Scene {
 /// what the render spent and reached.
 #[pyclass(frozen, module = "steradian._steradian")]
 pub struct RenderResult {
+    /// The image, as `Scene.render` returns it: float32, shape (H, W, 3) (or 3 + k with AOV
+    /// layers), in the sensor's unit.
+    #[pyo3(get)]
     image: Py<PyAny>,
+    /// Each pixel's standard error of the mean, float32, shape (H, W, 3), same unit.
+    #[pyo3(get)]
     stderr: Py<PyAny>,
+    /// Samples per pixel in the image (the mean per pixel of an adaptive render); with
+    /// `target_error`, where the render stopped.
+    #[pyo3(get)]
     spp: u32,
+    /// Samples in the image, all pixels.
+    #[pyo3(get)]
     samples: u64,
+    /// Ray queries (closest hits and shadow rays) made by this call's passes.
+    #[pyo3(get)]
     rays: u64,
+    /// Seconds the render took (pilots included; loading not).
+    #[pyo3(get)]
     elapsed: f64,
+    /// The relative error that 95 % of the pixels have reached at 95 % confidence (1.96
+    /// standard errors over the pixel's value, a value counting at least 1 % of the image's
+    /// mean): `target_error`'s rule, which the render met when this is at most its target.
+    #[pyo3(get)]
     error_reached: f64,
+    /// Whether the render stopped because it reached its `target_error`.
+    #[pyo3(get)]
     target_reached: bool,
+    /// Whether the render ended before its samples or its target error (a time limit, or
+    /// stopped).
+    #[pyo3(get)]
     interrupted: bool,
+    /// NaN/Inf samples dropped (never averaged in).
+    #[pyo3(get)]
     dropped_samples: u64,
+    /// `path`'s branches per camera sample; `None` for other integrators.
+    #[pyo3(get)]
     branches: Option<u32>,
+    /// Whether the samples were spread by adaptive sampling (`allocation`).
+    #[pyo3(get)]
     adaptive: bool,
 }
 
@@ -700,83 +729,6 @@ impl RenderResult {
 
 #[pymethods]
 impl RenderResult {
-    /// The image, as `Scene.render` returns it: float32, shape (H, W, 3) (or 3 + k with AOV
-    /// layers), in the sensor's unit.
-    #[getter]
-    fn image(&self, py: Python<'_>) -> Py<PyAny> {
-        self.image.clone_ref(py)
-    }
-
-    /// Each pixel's standard error of the mean, float32, shape (H, W, 3), same unit.
-    #[getter]
-    fn stderr(&self, py: Python<'_>) -> Py<PyAny> {
-        self.stderr.clone_ref(py)
-    }
-
-    /// Samples per pixel in the image (the mean per pixel of an adaptive render); with
-    /// `target_error`, where the render stopped.
-    #[getter]
-    fn spp(&self) -> u32 {
-        self.spp
-    }
-
-    /// Samples in the image, all pixels.
-    #[getter]
-    fn samples(&self) -> u64 {
-        self.samples
-    }
-
-    /// Ray queries (closest hits and shadow rays) made by this call's passes.
-    #[getter]
-    fn rays(&self) -> u64 {
-        self.rays
-    }
-
-    /// Seconds the render took (pilots included; loading not).
-    #[getter]
-    fn elapsed(&self) -> f64 {
-        self.elapsed
-    }
-
-    /// The relative error that 95 % of the pixels have reached at 95 % confidence (1.96
-    /// standard errors over the pixel's value, a value counting at least 1 % of the image's
-    /// mean): `target_error`'s rule, which the render met when this is at most its target.
-    #[getter]
-    fn error_reached(&self) -> f64 {
-        self.error_reached
-    }
-
-    /// Whether the render stopped because it reached its `target_error`.
-    #[getter]
-    fn target_reached(&self) -> bool {
-        self.target_reached
-    }
-
-    /// Whether the render ended before its samples or its target error (a time limit, or
-    /// stopped).
-    #[getter]
-    fn interrupted(&self) -> bool {
-        self.interrupted
-    }
-
-    /// NaN/Inf samples dropped (never averaged in).
-    #[getter]
-    fn dropped_samples(&self) -> u64 {
-        self.dropped_samples
-    }
-
-    /// `path`'s branches per camera sample; `None` for other integrators.
-    #[getter]
-    fn branches(&self) -> Option<u32> {
-        self.branches
-    }
-
-    /// Whether the samples were spread by adaptive sampling (`allocation`).
-    #[getter]
-    fn adaptive(&self) -> bool {
-        self.adaptive
-    }
-
     fn __repr__(&self) -> String {
         format!(
             "RenderResult({} spp, 95 % of the pixels within ±{:.2} %, {:.2} s)",

@@ -3,6 +3,7 @@
 //! filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`).
 
+use glam::Vec2;
 use steradian::emitter::horizontal_illuminance;
 use steradian::film::{
     BoxFilter, CatmullRomFilter, ComponentFormat, Film, GaussianFilter, LanczosFilter,
@@ -478,7 +479,13 @@ fn perspective_camera(
     fov_film: &Film,
 ) -> Result<SensorKind, LoadError> {
     let c = projective(node, film, fov_film)?;
+    let p = &node.props;
+    let offset = Vec2::new(
+        p.get_float("principal_point_offset_x")?.unwrap_or(0.0),
+        p.get_float("principal_point_offset_y")?.unwrap_or(0.0),
+    );
     let camera = Perspective::new(c.to_world, c.x_fov, c.aspect, c.near_clip, c.far_clip)
+        .and_then(|camera| camera.with_principal_point_offset(offset))
         .map_err(at_param(node))?;
     Ok(SensorKind::Perspective(camera))
 }

@@ -9,12 +9,21 @@
 //! | `near_clip`      | float     | 0.01      | m; rays start on the near plane |
 //! | `far_clip`       | float     | 10000     | m |
 //! | `focus_distance` | float     | far_clip  | accepted for compatibility; a pinhole is always in focus |
+//! | `principal_point_offset_x`, `principal_point_offset_y` | float | 0 | shift of the image window, as fractions of the film's width and height (the Mitsuba Blender add-on writes them for Blender's lens shift) |
 //! | film, sampler    | children  | `hdrfilm`, `independent` | |
 //!
 //! Pixel (0,0) is the top-left of the image; image x grows towards the camera's right (local
 //! −x, since Mitsuba's local +x points left) and image y downwards. For a film position
 //! (sx, sy) ∈ [0,1]², the ray direction in camera space is proportional to
 //! ((1 − 2sx)·tan(fov_x/2), (1 − 2sy)·tan(fov_x/2)/aspect, 1).
+//!
+//! **Principal point.** As in Mitsuba 3, the offset (ox, oy) is added to the film position
+//! before it becomes a direction: pixel (sx, sy) looks where (sx + ox, sy + oy) looks without
+//! it, so a positive ox turns the view towards the image's right and the scene moves left.
+//! The window keeps its size, so the importance below is unchanged; particle tracing maps a
+//! direction back to the film position less the offset. (Mitsuba's `importance` tests the
+//! unshifted window, which drops light-traced points near the shifted edges; steradian tests
+//! the window the camera actually sees.)
 //!
 //! ## Importance (for particle tracing)
 //!
@@ -38,6 +47,8 @@ pub struct Perspective {
     tan_half: Vec2,
     pub near_clip: f32,
     pub far_clip: f32,
+    /// Principal point offset (fractions of the film's width and height, see the module docs).
+    principal_point: Vec2,
 }
 
 /// Checks the camera transform is rigid and the clip planes are sane.
@@ -80,7 +91,32 @@ impl Perspective {
     ) -> Result<Self, ParamError> {
         validate(&to_world, near_clip, far_clip)?;
         let tx = (x_fov / 2.0).tan();
-        Ok(Perspective { to_world, tan_half: Vec2::new(tx, tx / aspect), near_clip, far_clip })
+        Ok(Perspective {
+            to_world,
+            tan_half: Vec2::new(tx, tx / aspect),
+            near_clip,
+            far_clip,
+            principal_point: Vec2::ZERO,
+        })
+    }
+
+    /// The camera with its principal point offset by `offset` (fractions of the film's width
+    /// and height, Mitsuba's `principal_point_offset_x/y`; see the module docs).
+    pub fn with_principal_point_offset(mut self, offset: Vec2) -> Result<Self, ParamError> {
+        for (name, v) in
+            [("principal_point_offset_x", offset.x), ("principal_point_offset_y", offset.y)]
+        {
+            if !v.is_finite() {
+                return Err(ParamError::new(name, format!("{name} must be finite, got {v}")));
+            }
+        }
+        self.principal_point = offset;
+        Ok(self)
+    }
+
+    /// The principal point offset (fractions of the film's width and height).
+    pub fn principal_point_offset(&self) -> Vec2 {
+        self.principal_point
     }
 
     /// Unnormalised camera-space direction through film position `film_uv`.
@@ -96,7 +132,7 @@ impl Perspective {
 
     #[inline]
     pub fn sample_ray(&self, film_uv: Vec2) -> Ray {
-        let d = Self::local_direction(self.tan_half, film_uv).normalize();
+        let d = Self::local_direction(self.tan_half, film_uv + self.principal_point).normalize();
         // rays start on the near plane and end on the far plane (both are z = const planes)
         let inv_z = 1.0 / d.z;
         let (near_t, far_t) = (self.near_clip * inv_z, self.far_clip * inv_z);
@@ -131,7 +167,8 @@ impl Perspective {
         }
         let (px, py) = (local.x / local.z, local.y / local.z);
         let film_uv =
-            Vec2::new(0.5 * (1.0 - px / self.tan_half.x), 0.5 * (1.0 - py / self.tan_half.y));
+            Vec2::new(0.5 * (1.0 - px / self.tan_half.x), 0.5 * (1.0 - py / self.tan_half.y))
+                - self.principal_point;
         if !(film_uv.cmpge(Vec2::ZERO).all() && film_uv.cmple(Vec2::ONE).all()) {
             return None;
         }
@@ -245,6 +282,34 @@ mod tests {
         assert!((s.dist - (p - s.position).length()).abs() < 1e-5);
         // behind the camera: no connection
         assert!(c.sample_direction(Vec3::new(0.0, 0.0, 5.0)).is_none());
+    }
+
+    /// A principal point offset shifts the window: the shifted camera's pixel looks where the
+    /// plain camera's pixel at the offset position looks, a point connects back to the shifted
+    /// film position, and the importance stays normalised (it is the same window, moved).
+    #[test]
+    fn principal_point_offset_shifts_the_window() {
+        let offset = Vec2::new(0.13, -0.07);
+        let c = camera().with_principal_point_offset(offset).unwrap();
+        let plain = camera();
+        for uv in [Vec2::new(0.5, 0.5), Vec2::new(0.1, 0.9), Vec2::new(0.8, 0.3)] {
+            let (a, b) = (c.sample_ray(uv), plain.sample_ray(uv + offset));
+            assert!((a.d - b.d).length() < 1e-6 && (a.o - b.o).length() < 1e-6, "{uv}");
+        }
+        // a positive x offset turns the view towards the image's right (+x here)
+        assert!(c.sample_ray(Vec2::splat(0.5)).d.x > 0.0);
+        let p = Vec3::new(0.3, -0.2, 0.5);
+        let s = c.sample_direction(p).unwrap();
+        let r = c.sample_ray(s.film_uv);
+        assert!((r.d + s.wi).length() < 1e-5, "{:?} vs {:?}", r.d, s.wi);
+        let sp = plain.sample_direction(p).unwrap();
+        assert!((s.film_uv + offset - sp.film_uv).length() < 1e-5);
+        assert!((s.weight - sp.weight).abs() <= 1e-6 * sp.weight);
+        // a direction the plain camera sees at its left edge falls outside the shifted window
+        let edge = plain.sample_ray(Vec2::new(0.05, 0.5)).d;
+        assert!(plain.sample_direction_at_infinity(edge).is_some());
+        assert!(c.sample_direction_at_infinity(edge).is_none());
+        assert!(camera().with_principal_point_offset(Vec2::new(f32::NAN, 0.0)).is_err());
     }
 
     #[test]

@@ -5,7 +5,9 @@ variance image that Mitsuba's render-test rule (`steradian::film::z_test`) needs
     pip install mitsuba numpy
     python3 scripts/mitsuba_reference.py SCENE.xml --spp 4096 --passes 64 -o tests/reference/X
 
-writes X-ref.exr (mean radiance, float32 RGB) and X-var.exr (variance of one sample's value).
+writes X-ref.exr (mean radiance, float32 RGB) and X-var.exr (variance of one sample's value);
+for a film with an alpha channel (`rgba`) also X-alpha-ref.exr and X-alpha-var.exr, the same
+for alpha (in all three channels).
 The render is split into `passes` renders of spp/passes samples with seeds 0, 1, ...; the
 per-sample variance is spp/passes times the unbiased variance of the pass means (each pass
 mean is an average of spp/passes independent samples: independent sampler, so the estimate
@@ -43,7 +45,9 @@ def main():
     total = None
     total2 = None
     for k in range(args.passes):
-        img = np.array(mi.render(scene, sensor=sensor, spp=spp_pass, seed=k), dtype=np.float64)[..., :3]
+        img = np.array(mi.render(scene, sensor=sensor, spp=spp_pass, seed=k), dtype=np.float64)
+        # an `rgba` film's alpha channel, broadcast to three channels
+        img = img[..., [0, 1, 2, 3, 3, 3]] if img.shape[-1] == 4 else img[..., :3]
         total = img if total is None else total + img
         total2 = img * img if total2 is None else total2 + img * img
         print(f"pass {k + 1}/{args.passes} ({time.perf_counter() - t0:.0f} s)", file=sys.stderr, flush=True)
@@ -51,8 +55,12 @@ def main():
     mean = total / n
     var_of_pass_mean = np.maximum(total2 - n * mean * mean, 0.0) / (n - 1)
     var_sample = var_of_pass_mean * spp_pass
-    mi.Bitmap(mean.astype(np.float32)).write(args.output + "-ref.exr")
-    mi.Bitmap(var_sample.astype(np.float32)).write(args.output + "-var.exr")
+    mi.Bitmap(mean[..., :3].astype(np.float32)).write(args.output + "-ref.exr")
+    mi.Bitmap(var_sample[..., :3].astype(np.float32)).write(args.output + "-var.exr")
+    if mean.shape[-1] == 6:
+        mi.Bitmap(mean[..., 3:].astype(np.float32)).write(args.output + "-alpha-ref.exr")
+        mi.Bitmap(var_sample[..., 3:].astype(np.float32)).write(args.output + "-alpha-var.exr")
+        print(f"wrote the alpha channel to {args.output}-alpha-ref.exr and -alpha-var.exr")
     print(f"wrote {args.output}-ref.exr and {args.output}-var.exr: {args.spp} spp in {n} passes, "
           f"{time.perf_counter() - t0:.0f} s, mitsuba {mi.__version__} {args.variant}")
 

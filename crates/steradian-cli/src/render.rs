@@ -8,7 +8,9 @@ use std::time::{Duration, Instant};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 use steradian::film::false_color_png;
-use steradian::film::{write_exr, write_exr_channels, write_png, ComponentFormat, ExrLayer};
+use steradian::film::{
+    write_exr, write_exr_channels, write_png, ColorChannels, ComponentFormat, ExrLayer,
+};
 use steradian::integrator::Integrator;
 use steradian::render::{
     image_error, render, Checkpoint, PixelQuantity, Progress, RenderError, RenderOptions,
@@ -341,11 +343,14 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let write_start = Instant::now();
     let (image, error) = (out.image(), out.stderr_image());
     let aovs = out.aov_images();
-    if aovs.is_empty() {
+    let color = out.film().pixel_format.color();
+    if aovs.is_empty() && color == ColorChannels::Rgb {
         write_exr(&output, &image)?;
     } else {
-        // `moment`, `aov`: the image's R, G, B, then each AOV layer's channels (Mitsuba's layout)
-        let mut layers = vec![ExrLayer { prefix: "", channels: &["R", "G", "B"], image: &image }];
+        // the image in the film's `pixel_format` (R, G, B; Y; or X, Y, Z), then each AOV
+        // layer's channels (`moment`, `aov`, and last the alpha channel `A`: Mitsuba's layout)
+        let converted = color.convert(&image);
+        let mut layers = vec![ExrLayer { prefix: "", channels: color.names(), image: &converted }];
         layers.extend(aovs.iter().map(|(layer, img)| ExrLayer {
             prefix: &layer.name,
             channels: &layer.channels,

@@ -323,6 +323,49 @@ fn moment_writes_its_layers() {
     }
 }
 
+/// `pixel_format` sets the EXR's channels: `rgba` adds `A` (1 on the sphere, 0 off it, a
+/// fraction on its edge), `luminance_alpha` writes `Y` (the image's luminance) and `A`, `xyz`
+/// writes `X`, `Y`, `Z` and no `R`.
+#[test]
+fn pixel_format_sets_the_channels() {
+    let dir = temp_dir("cli-pixel-format");
+    let scene = |format: &str| {
+        format!(
+            r#"<scene version="3.0.0">
+    <integrator type="path"/>
+    <sensor type="perspective"><float name="fov" value="40"/>
+        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="12"/><integer name="height" value="10"/>
+            <string name="pixel_format" value="{format}"/><rfilter type="box"/></film></sensor>
+    <emitter type="point"><point name="position" x="0" y="2" z="3"/><rgb name="intensity" value="5"/></emitter>
+    <shape type="sphere"><float name="radius" value="0.9"/></shape>
+</scene>"#
+        )
+    };
+    for format in ["rgba", "luminance_alpha", "xyz"] {
+        std::fs::write(dir.join(format!("{format}.xml")), scene(format)).unwrap();
+        let xml = format!("{format}.xml");
+        let exr = format!("{format}.exr");
+        ok(&dir, &["render", &xml, "-o", &exr, "--spp", "16", "--seed", "2", "--quiet"]);
+    }
+    let rgba = read(&dir.join("rgba.exr"));
+    let alpha = steradian::film::read_exr_channels(&dir.join("rgba.exr"), &["A"]).unwrap();
+    let a: Vec<f32> = alpha.data.iter().step_by(3).copied().collect();
+    assert!(a.contains(&0.0) && a.contains(&1.0) && a.iter().any(|&v| v > 0.0 && v < 1.0), "{a:?}");
+    // the same seed: the luminance file holds the rgba image's luminance
+    let y =
+        steradian::film::read_exr_channels(&dir.join("luminance_alpha.exr"), &["Y", "A"]).unwrap();
+    for (rgb, ya) in rgba.data.chunks(3).zip(y.data.chunks(3)) {
+        let lum = 0.212671 * rgb[0] + 0.715160 * rgb[1] + 0.072169 * rgb[2];
+        assert!((ya[0] - lum).abs() <= 1e-5 * lum.max(1e-3), "{ya:?} vs {rgb:?}");
+    }
+    assert_eq!(y.data.iter().skip(1).step_by(3).copied().collect::<Vec<_>>(), a);
+    let xyz = dir.join("xyz.exr");
+    steradian::film::read_exr_channels(&xyz, &["X", "Y", "Z"]).unwrap();
+    assert!(steradian::film::read_exr_channels(&xyz, &["R"]).is_err());
+    assert!(steradian::film::read_exr_channels(&xyz, &["A"]).is_err());
+}
+
 /// `measure` on a work plane prints the grid (ny rows of nx), its errors and the statistics,
 /// in lux: under a 1000 cd point source the centre cells read I h / d³.
 #[test]

@@ -135,7 +135,7 @@ enum LastVertexLights {
 }
 
 /// The most surfaces a shadow ray crosses in [`Scene::transmittance`].
-const MAX_NULL_CROSSINGS: usize = 256;
+pub(crate) const MAX_NULL_CROSSINGS: usize = 256;
 
 /// The most emitters [`LastVertexLights::CheckEach`] checks at a vertex (one distance test
 /// each).
@@ -459,6 +459,12 @@ impl Scene {
         } else {
             b.interior
         }
+    }
+
+    /// Whether some surface may let light through unscattered (a `null` BSDF, a `mask`).
+    #[inline]
+    pub fn has_null_surfaces(&self) -> bool {
+        self.null_surfaces
     }
 
     /// The transmittance from `p` (on a surface with geometric normal `n`; zero for a point

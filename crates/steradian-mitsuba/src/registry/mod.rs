@@ -436,6 +436,15 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
             ));
         }
     }
+    if integrator.alpha_rule().is_none()
+        && b.desc.sensors.iter().any(|s| s.film.pixel_format.has_alpha())
+    {
+        let pos = integrator_pos.clone().unwrap_or_else(|| root.pos.clone());
+        return Err(LoadError::at(
+            &pos,
+            "<integrator type=\"ptracer\">: the film's pixel_format asks for an alpha channel, which needs camera samples (Mitsuba's ptracer writes its light-path splat count there): use a pixel_format without alpha",
+        ));
+    }
     sensors::resolve_daylight_factors(&mut b)?;
     b.desc.light_selection = integrator.light_selection();
     let scene = Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))?;

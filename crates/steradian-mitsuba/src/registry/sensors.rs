@@ -7,7 +7,7 @@ use glam::Vec2;
 use steradian::emitter::horizontal_illuminance;
 use steradian::film::{
     BoxFilter, CatmullRomFilter, ComponentFormat, Film, GaussianFilter, LanczosFilter,
-    MitchellFilter, ReconstructionFilter, TentFilter,
+    MitchellFilter, PixelFormat, ReconstructionFilter, TentFilter,
 };
 use steradian::geometry::Transform;
 use steradian::sampling::{Sampler, SamplerKind};
@@ -119,14 +119,12 @@ fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
             ));
         }
     }
-    if let Some(f) = p.get_string("pixel_format")? {
-        if f != "rgb" {
-            return Err(LoadError::at(
-                p.position("pixel_format").unwrap(),
-                format!("hdrfilm: pixel_format '{f}' is not supported yet (only 'rgb')"),
-            ));
-        }
-    }
+    let pixel_format = match p.get_string("pixel_format")? {
+        Some(f) => PixelFormat::parse(&f).map_err(|m| {
+            LoadError::at(p.position("pixel_format").unwrap(), format!("hdrfilm: {m}"))
+        })?,
+        None => PixelFormat::default(),
+    };
     let component_format = match p.get_string("component_format")? {
         Some(f) => ComponentFormat::parse(&f).map_err(|m| {
             LoadError::at(p.position("component_format").unwrap(), format!("hdrfilm: {m}"))
@@ -147,6 +145,7 @@ fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
         )
     })?;
     film.component_format = component_format;
+    film.pixel_format = pixel_format;
     Ok(film)
 }
 

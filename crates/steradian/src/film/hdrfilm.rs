@@ -7,7 +7,7 @@
 //! |--------------------|---------|--------------|--------------------------------------------------|
 //! | `width`            | integer | 768          | image width in pixels (1 ..= 32768)              |
 //! | `height`           | integer | 576          | image height in pixels (1 ..= 32768)             |
-//! | `pixel_format`     | string  | `"rgb"`      | only `rgb` (no alpha) is supported               |
+//! | `pixel_format`     | string  | `"rgb"`      | `rgb`, `rgba`, `luminance`, `luminance_alpha`, `xyz`, `xyza`: the file's channels (`pixel_format.rs`) |
 //! | `component_format` | string  | `"float16"`  | `float16` or `float32`: precision of files the film writes itself; developed images are always f32 |
 //! | `sample_border`    | boolean | false        | also sample pixels just outside the film so that edge pixels get the same filter support as interior ones |
 //! | `rfilter`          | filter  | `gaussian`   | reconstruction filter (σ = 0.5 px, radius 2 px)  |
@@ -28,6 +28,7 @@ use glam::UVec2;
 use super::filter::ReconstructionFilter;
 use super::image::Image;
 use super::image_block::{ImageBlock, PixelAccum};
+use super::pixel_format::PixelFormat;
 use super::splat_block::SplatBlock;
 
 /// Largest accepted width or height, in pixels.
@@ -66,6 +67,8 @@ pub struct Film {
     pub component_format: ComponentFormat,
     /// Whether the sensor should also sample the border pixels outside the film (default false).
     pub sample_border: bool,
+    /// The channels of the files the render writes (default RGB).
+    pub pixel_format: PixelFormat,
     data: Vec<PixelAccum>,
     /// AOV layers: names and Σw·a per pixel (pixel-major, then layer), see
     /// [`with_aov_layers`](Film::with_aov_layers).
@@ -81,6 +84,21 @@ pub struct Film {
 pub struct AovLayer {
     pub name: String,
     pub channels: Vec<&'static str>,
+}
+
+impl AovLayer {
+    /// The alpha channel of an `rgba` film (`pixel_format.rs`): the file's `A`, kept as the
+    /// last AOV layer.
+    pub fn alpha() -> AovLayer {
+        AovLayer { name: String::new(), channels: vec!["A"] }
+    }
+}
+
+impl Film {
+    /// Whether the film keeps an alpha layer (its last, [`AovLayer::alpha`]).
+    pub fn has_alpha_layer(&self) -> bool {
+        self.aov_names.last() == Some(&AovLayer::alpha())
+    }
 }
 
 impl Default for Film {
@@ -115,6 +133,7 @@ impl Film {
             filter,
             component_format: ComponentFormat::default(),
             sample_border: false,
+            pixel_format: PixelFormat::default(),
             data: vec![PixelAccum::default(); width as usize * height as usize],
             aov_names: Vec::new(),
             aov: Vec::new(),

@@ -2,6 +2,7 @@
 //! at a surface point), over a [`Scene`]. The render driver (`crate::render`) turns them into
 //! images.
 
+mod alpha;
 mod aov;
 mod branching;
 mod depth;
@@ -13,6 +14,7 @@ mod path;
 mod ptracer;
 mod volpath;
 
+pub use alpha::{camera_ray_alpha, AlphaRule, MediaInAlpha};
 pub use aov::{AovField, AovIntegrator};
 pub use branching::{pilot, Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
 pub use depth::DepthIntegrator;
@@ -90,6 +92,27 @@ impl Integrator {
                 nested.first().is_some_and(|(_, i)| i.estimates_light())
             }
             _ => true,
+        }
+    }
+
+    /// How its camera samples cover an `rgba` film (`alpha.rs`); `None` for `ptracer`, whose
+    /// image is not made of camera samples.
+    pub fn alpha_rule(&self) -> Option<AlphaRule> {
+        match self {
+            Integrator::Path(p) => {
+                Some(AlphaRule::Scattering { media: MediaInAlpha::Ignored, emitters: p.emitters })
+            }
+            Integrator::VolPath(p) => Some(AlphaRule::Scattering {
+                media: MediaInAlpha::Attenuating,
+                emitters: p.emitters,
+            }),
+            Integrator::Direct(_) | Integrator::Depth(_) | Integrator::Aov(_) => {
+                Some(AlphaRule::AnySurface)
+            }
+            Integrator::Moment(MomentIntegrator { nested }) => {
+                nested.first().and_then(|(_, i)| i.alpha_rule())
+            }
+            Integrator::ParticleTracer(_) => None,
         }
     }
 

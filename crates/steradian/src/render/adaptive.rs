@@ -149,6 +149,9 @@ pub(super) fn pilot(
         },
         filter: BoxFilter::new().into(),
         densities: None,
+        // adaptive renders carry no AOV layers but the alpha channel, which the pilot skips
+        aov_layers: 0,
+        alpha: None,
         ..*blocks
     });
     let mut sums = vec![[PixelAccum::default(); REPLICATES]; (gw * gh) as usize];

@@ -9,7 +9,7 @@ use super::options::Plan;
 use super::quantity::PixelQuantity;
 use super::schedule::WorkItem;
 use crate::film::{ImageBlock, ReconstructionFilter};
-use crate::integrator::{estimate_irradiance, Integrator};
+use crate::integrator::{camera_ray_alpha, estimate_irradiance, AlphaRule, Integrator};
 use crate::sampling::{mix64, PixelSampler, Sampler, SamplerKind};
 use crate::scene::{rays_traced_on_this_thread, Scene};
 use crate::sensor::{film_position, Sensor, SensorKind};
@@ -29,8 +29,10 @@ pub(super) struct BlockRenderer<'a> {
     pub filter: ReconstructionFilter,
     pub width: u32,
     pub height: u32,
-    /// AOV layers of the film (`moment`'s), 0 for most integrators.
+    /// AOV layers of the film (`moment`'s, the alpha channel's), 0 for most renders.
     pub aov_layers: usize,
+    /// How camera samples fill the alpha channel, the last AOV layer (`rgba` films).
+    pub alpha: Option<AlphaRule>,
     /// An adaptive render's per-pixel sample counts and weights (`adaptive.rs`); `None`:
     /// every pixel takes the item's samples with weight 1.
     pub densities: Option<&'a Densities>,
@@ -64,6 +66,7 @@ impl<'a> BlockRenderer<'a> {
             width: plan.film.width,
             height: plan.film.height,
             aov_layers: plan.film.aov_layers().len(),
+            alpha: if plan.film.has_alpha_layer() { integrator.alpha_rule() } else { None },
             densities: None,
         }
     }
@@ -81,17 +84,25 @@ impl<'a> BlockRenderer<'a> {
                 }
             });
         }
-        // `moment`, `aov` (the plan gives AOV layers to camera radiance renders only)
+        // `moment`, `aov`, the alpha channel (the plan gives AOV layers to camera radiance
+        // renders only)
         let mut aovs = [Spectrum::ZERO; MAX_AOV_LAYERS];
         let n = self.aov_layers;
+        let alpha = self.alpha;
         self.render_samples(item, cancelled, &mut aovs[..n], |s, film_uv, aovs| {
             aovs.fill(Spectrum::ZERO);
             let Some(ray) = self.sensor.start_ray(film_uv, s) else { return Spectrum::ZERO };
-            match self.integrator {
-                Integrator::Moment(m) => m.li_aovs(self.scene, &ray, s, aovs),
-                Integrator::Aov(a) => a.li_aovs(self.scene, &ray, s, aovs),
-                _ => unreachable!("only moment and aov write AOVs"),
+            let (own, alpha_layer) = aovs.split_at_mut(n - usize::from(alpha.is_some()));
+            let l = match self.integrator {
+                Integrator::Moment(m) => m.li_aovs(self.scene, &ray, s, own),
+                Integrator::Aov(a) => a.li_aovs(self.scene, &ray, s, own),
+                other => other.li(self.scene, &ray, s),
+            };
+            // after the radiance, so that the image does not depend on the alpha channel
+            if let (Some(rule), [a]) = (alpha, alpha_layer) {
+                *a = Spectrum::splat(camera_ray_alpha(self.scene, &ray, rule, s));
             }
+            l
         })
     }
 

@@ -66,7 +66,7 @@ fn resolve_allocation(
 ) -> Result<(Option<Densities>, Option<AdaptiveReport>), RenderError> {
     let applies = plan.quantity == PixelQuantity::Sensor
         && !plan.meter
-        && plan.film.aov_layers().is_empty()
+        && integrator.aov_layers().is_empty()
         && !matches!(integrator, Integrator::ParticleTracer(_) | Integrator::Depth(_));
     let mode = match &opts.resume {
         Some(r) if r.header.allocation == 0 => SampleAllocation::Uniform,

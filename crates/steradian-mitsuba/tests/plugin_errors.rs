@@ -71,6 +71,8 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
         ("texture", "volume"),
         ("bsdf", "hair"),
         ("bsdf", "polarizer"),
+        ("emitter", "sunsky"),
+        ("emitter", "timed_sunsky"),
         ("integrator", "prb_basic"),
         ("integrator", "stokes"),
     ] {

@@ -230,6 +230,7 @@ pub(crate) type Plugins<F> = [(&'static str, F)];
 /// plugins stay here for good (steradian renders RGB); the others are missing features.
 pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("bsdf", &["hair", "measured", "measured_polarized", "polarizer", "retarder"]),
+    ("emitter", &["sunsky", "timed_sunsky"]),
     ("shape", &["bsplinecurve", "linearcurve", "sdfgrid", "ellipsoids", "ellipsoidsmesh", "merge"]),
     ("film", &["specfilm"]),
     ("texture", &["volume"]),

@@ -15,7 +15,7 @@ use steradian::geometry::Transform;
 use super::attrs::{Attr, Attrs};
 use super::link::{RawChild, RawNode, RawTree};
 use super::params::Params;
-use super::{transform, values};
+use super::{transform, typed_spectrum, values};
 use crate::error::{LoadError, LoadWarning};
 use crate::file_resolver::FileResolver;
 use crate::properties::{Properties, PropertyValue};
@@ -349,6 +349,14 @@ impl Parser {
                 self.no_content(src, el, "<spectrum>")?;
                 self.parse_property(src, &attrs, parent)
             }
+            "spectrum"
+                if attrs.get("id").is_none()
+                    && attrs.get("type").is_some_and(|t| {
+                        typed_spectrum::TYPED_SPECTRA.contains(&t.value.as_str())
+                    }) =>
+            {
+                self.parse_typed_spectrum(src, el, &attrs, parent, depth)
+            }
             "spectrum" => self.parse_object(src, el, &attrs, ObjectTag::Spectrum, parent, depth),
             "transform" => self.parse_transform(src, el, &attrs, parent),
             "translate" | "rotate" | "scale" | "matrix" | "lookat" => Err(attrs
@@ -443,6 +451,33 @@ impl Parser {
         let idx = self.push(b, id, name, attrs.pos.clone());
         parent.children.push(RawChild::Nested(idx));
         Ok(())
+    }
+
+    /// `<spectrum type="d65" name="…">` and the other spectrum plugins
+    /// (`typed_spectrum.rs`): a value of the parent's property `name`.
+    fn parse_typed_spectrum(
+        &mut self,
+        src: &Src,
+        el: roxmltree::Node,
+        attrs: &Attrs,
+        parent: &mut Builder,
+        depth: usize,
+    ) -> Result<(), LoadError> {
+        attrs.allow(&["type", "name"])?;
+        let ty = attrs.require("type")?.value.clone();
+        let name = self.slot_name(src, attrs.require("name")?, parent)?;
+        parent.claim(&name, &attrs.pos)?;
+        let mut b = Builder::new(ObjectTag::Spectrum, &ty, None);
+        self.parse_children(src, el, &mut b, depth + 1)?;
+        if !b.children.is_empty() {
+            return Err(
+                attrs.error(format!("<spectrum type=\"{ty}\"> holds only properties, not objects"))
+            );
+        }
+        let within_emitter = parent.tag == ObjectTag::Emitter;
+        let value =
+            typed_spectrum::typed_spectrum(&ty, &b.props, &attrs.pos, &name, within_emitter)?;
+        parent.props.insert(name, PropertyValue::Spectrum(value), attrs.pos.clone())
     }
 
     fn parse_include(

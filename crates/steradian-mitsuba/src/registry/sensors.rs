@@ -3,10 +3,10 @@
 //! filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`).
 
-use glam::Vec2;
+use glam::{UVec2, Vec2};
 use steradian::emitter::horizontal_illuminance;
 use steradian::film::{
-    BoxFilter, CatmullRomFilter, ComponentFormat, Film, GaussianFilter, LanczosFilter,
+    BoxFilter, CatmullRomFilter, ComponentFormat, Film, FilmWindow, GaussianFilter, LanczosFilter,
     MitchellFilter, PixelFormat, ReconstructionFilter, TentFilter,
 };
 use steradian::geometry::Transform;
@@ -137,13 +137,36 @@ fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
             "hdrfilm: sample_border = true is not supported yet",
         ));
     }
-    // The core's message already says "hdrfilm: ".
-    let mut film = Film::new(width, height, filter).map_err(|m| {
+    // the crop window (Mitsuba's defaults: the whole film)
+    let crop_int = |name: &str, default: u32, range: std::ops::RangeInclusive<u32>| {
+        let v = p.get_int(name)?.unwrap_or(default as i64);
+        if v < *range.start() as i64 || v > *range.end() as i64 {
+            return Err(LoadError::at(
+                p.position(name).unwrap_or(&node.pos),
+                format!(
+                    "hdrfilm: {name} = {v} leaves the {width}×{height} film (it must lie in {}..={})",
+                    range.start(),
+                    range.end()
+                ),
+            ));
+        }
+        Ok(v as u32)
+    };
+    let ox = crop_int("crop_offset_x", 0, 0..=width - 1)?;
+    let oy = crop_int("crop_offset_y", 0, 0..=height - 1)?;
+    let cw = crop_int("crop_width", width - ox, 1..=width - ox)?;
+    let ch = crop_int("crop_height", height - oy, 1..=height - oy)?;
+    let core_err = |m: String| {
+        // The core's message already says "hdrfilm: ".
         LoadError::at(
             &node.pos,
             format!("{}: {}", node.desc(), m.strip_prefix("hdrfilm: ").unwrap_or(&m)),
         )
-    })?;
+    };
+    let mut film = Film::new(cw, ch, filter).map_err(core_err)?;
+    if (ox, oy, cw, ch) != (0, 0, width, height) {
+        film = film.with_crop(UVec2::new(ox, oy), UVec2::new(width, height)).map_err(core_err)?;
+    }
     film.component_format = component_format;
     film.pixel_format = pixel_format;
     Ok(film)
@@ -454,8 +477,10 @@ fn projective(node: &PluginNode, film: &Film, fov_film: &Film) -> Result<Project
     let p = &node.props;
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let fov = field_of_view(node)?;
-    let x_fov = fov.x_fov(fov_film.width, fov_film.height).map_err(at_param(node))?;
-    let aspect = film.width as f32 / film.height as f32;
+    // the full frame, of which a cropped film renders a window
+    let (fov_size, size) = (fov_film.window().full_size(), film.window().full_size());
+    let x_fov = fov.x_fov(fov_size.x, fov_size.y).map_err(at_param(node))?;
+    let aspect = size.x as f32 / size.y as f32;
     let near_clip = p.get_float("near_clip")?.unwrap_or(Perspective::DEFAULT_NEAR_CLIP);
     let far_clip = p.get_float("far_clip")?.unwrap_or(Perspective::DEFAULT_FAR_CLIP);
     let focus_distance = p.get_float("focus_distance")?.unwrap_or(far_clip);
@@ -538,7 +563,8 @@ fn orthographic(node: &PluginNode, film: &Film) -> Result<Orthographic, LoadErro
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let near = p.get_float("near_clip")?.unwrap_or(DEFAULT_NEAR_CLIP);
     let far = p.get_float("far_clip")?.unwrap_or(DEFAULT_FAR_CLIP);
-    let aspect = film.width as f32 / film.height as f32;
+    let size = film.window().full_size();
+    let aspect = size.x as f32 / size.y as f32;
     Orthographic::new(to_world, aspect, near, far).map_err(at_param(node))
 }
 
@@ -566,6 +592,9 @@ fn batch(
         return Err(at(node)("needs at least one nested <sensor>".into()));
     }
     let n = nested.len() as u32;
+    if film.window() != FilmWindow::whole(film.width, film.height) {
+        return Err(at(node)("a batch renders the whole film: crop_* is not supported".into()));
+    }
     if !film.width.is_multiple_of(n) {
         return Err(at(node)(format!(
             "the film's width {} must be a multiple of the number of sensors ({n})",

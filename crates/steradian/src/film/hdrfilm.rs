@@ -12,6 +12,14 @@
 //! | `sample_border`    | boolean | false        | also sample pixels just outside the film so that edge pixels get the same filter support as interior ones |
 //! | `rfilter`          | filter  | `gaussian`   | reconstruction filter (σ = 0.5 px, radius 2 px)  |
 //!
+//! | `crop_offset_x`, `crop_offset_y` | integer | 0 | the rendered window's top-left pixel in the full film |
+//! | `crop_width`, `crop_height` | integer | `width`, `height` less the offset | the rendered window's size: the image written |
+//!
+//! **Crop window** (Mitsuba's): the camera frames the full `width` × `height` film (its field
+//! of view and aspect ratio), and only the window is rendered and written, each pixel exactly
+//! as in the full render; the film's own `width` and `height` are then the window's, and
+//! [`FilmWindow`] maps its positions into the full frame.
+//!
 //! Pixel (i, j) covers `[i, i+1) × [j, j+1)` in film coordinates (x right, y down, row 0 on
 //! top); its centre is `(i + 0.5, j + 0.5)`. A sample at `p` is splatted to all pixels whose
 //! centres lie within the filter radius of `p` on both axes, with weight `w(dx)·w(dy)`, and each
@@ -23,7 +31,7 @@
 //! them; several films of the same size (passes, machines) combine with
 //! [`Film::accumulate`].
 
-use glam::UVec2;
+use glam::{UVec2, Vec2};
 
 use super::filter::ReconstructionFilter;
 use super::image::Image;
@@ -69,6 +77,9 @@ pub struct Film {
     pub sample_border: bool,
     /// The channels of the files the render writes (default RGB).
     pub pixel_format: PixelFormat,
+    /// Where the film lies in the full frame the camera sees (a crop window), or the whole
+    /// frame.
+    window: FilmWindow,
     data: Vec<PixelAccum>,
     /// AOV layers: names and Σw·a per pixel (pixel-major, then layer), see
     /// [`with_aov_layers`](Film::with_aov_layers).
@@ -84,6 +95,43 @@ pub struct Film {
 pub struct AovLayer {
     pub name: String,
     pub channels: Vec<&'static str>,
+}
+
+/// Where a film's pixels lie in the full frame its camera sees: the whole frame, or a crop
+/// window of it (`crop_offset_x/y`, `crop_width/height`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FilmWindow {
+    /// The window's top-left corner in the full frame, pixels.
+    offset: Vec2,
+    /// The full frame's width and height, pixels.
+    full: Vec2,
+}
+
+impl FilmWindow {
+    /// The whole frame of a `width` × `height` film.
+    pub fn whole(width: u32, height: u32) -> FilmWindow {
+        FilmWindow { offset: Vec2::ZERO, full: Vec2::new(width as f32, height as f32) }
+    }
+
+    /// The fraction of the full frame (what cameras take, [0, 1]² over it) at film position
+    /// `pos` (pixels of the window).
+    #[inline]
+    pub fn frame_uv(&self, pos: Vec2) -> Vec2 {
+        (self.offset + pos) / self.full
+    }
+
+    /// The film position (pixels of the window) at fraction `uv` of the full frame: the
+    /// inverse of [`frame_uv`](Self::frame_uv); outside the window for points it does not
+    /// hold.
+    #[inline]
+    pub fn position(&self, uv: Vec2) -> Vec2 {
+        uv * self.full - self.offset
+    }
+
+    /// The full frame's size, pixels.
+    pub fn full_size(&self) -> UVec2 {
+        self.full.as_uvec2()
+    }
 }
 
 impl AovLayer {
@@ -134,6 +182,7 @@ impl Film {
             component_format: ComponentFormat::default(),
             sample_border: false,
             pixel_format: PixelFormat::default(),
+            window: FilmWindow::whole(width, height),
             data: vec![PixelAccum::default(); width as usize * height as usize],
             aov_names: Vec::new(),
             aov: Vec::new(),
@@ -163,6 +212,27 @@ impl Film {
             data.extend(a.map(|v| if p.w != 0.0 { (v / p.w) as f32 } else { 0.0 }));
         }
         Image { width: self.width, height: self.height, data }
+    }
+
+    /// The film as the crop window at `offset` of a `full`-sized frame (Mitsuba's
+    /// `crop_offset_x/y` with `width`/`height` the full frame); the film's own size is the
+    /// window's. An error when the window leaves the frame.
+    pub fn with_crop(mut self, offset: UVec2, full: UVec2) -> Result<Film, String> {
+        let end = offset + self.size();
+        if end.x > full.x || end.y > full.y {
+            return Err(format!(
+                "hdrfilm: the crop window ({}, {}) + {}×{} leaves the {}×{} film",
+                offset.x, offset.y, self.width, self.height, full.x, full.y
+            ));
+        }
+        self.window = FilmWindow { offset: offset.as_vec2(), full: full.as_vec2() };
+        Ok(self)
+    }
+
+    /// Where the film lies in its camera's full frame (see [`FilmWindow`]).
+    #[inline]
+    pub fn window(&self) -> FilmWindow {
+        self.window
     }
 
     /// Film size in pixels.

@@ -130,6 +130,7 @@ pub fn pilot(
         return None;
     }
     let film_pixels = width as u64 * height as u64;
+    let window = sensor.film.window();
     let pixels = (PILOT_PIXELS as u64).min(film_pixels) as u32;
     let replicates = PILOT_REPLICATES.max(PILOT_UNITS.div_ceil(pixels));
     // work in paths (camera samples and branches): the pilot's with S samples per replicate,
@@ -169,7 +170,7 @@ pub fn pilot(
                 for sampler in &samplers {
                     for index in 0..s {
                         let mut ps = sampler.pixel_sampler(pixel, width, index);
-                        let (_, film_uv) = film_position(pixel, &mut ps, width, height);
+                        let (_, film_uv) = film_position(pixel, &mut ps, &window);
                         let start = values.len();
                         values.resize(start + 1 + n as usize, 0.0);
                         let Some(ray) = sensor.start_ray(film_uv, &mut ps) else { continue };

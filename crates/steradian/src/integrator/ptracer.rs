@@ -88,10 +88,16 @@ impl ParticleTracer {
         s: &mut PixelSampler,
         block: &mut SplatBlock,
     ) {
+        // a crop window (`render/particles.rs` traces one path per pixel of the full frame
+        // for it) takes the splats of the points it sees; those outside it are dropped, as
+        // Mitsuba's importance drops them, even where the filter would reach into the window
+        let window = sensor.film.window();
         let size = Vec2::new(block.width() as f32, block.height() as f32);
         let mut splat = |c: &SensorConnection, value: Spectrum| {
-            if value != Spectrum::ZERO {
-                block.splat(c.film_uv * size, value);
+            let pos = window.position(c.film_uv);
+            let seen = pos.cmpge(Vec2::ZERO).all() && pos.cmple(size).all();
+            if value != Spectrum::ZERO && seen {
+                block.splat(pos, value);
             }
         };
         if self.max_depth != Some(0) && !self.hide_emitters {

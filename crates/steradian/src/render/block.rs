@@ -8,7 +8,7 @@ use super::densities::Densities;
 use super::options::Plan;
 use super::quantity::PixelQuantity;
 use super::schedule::WorkItem;
-use crate::film::{ImageBlock, ReconstructionFilter};
+use crate::film::{FilmWindow, ImageBlock, ReconstructionFilter};
 use crate::integrator::{camera_ray_alpha, estimate_irradiance, AlphaRule, Integrator};
 use crate::sampling::{mix64, PixelSampler, Sampler, SamplerKind};
 use crate::scene::{rays_traced_on_this_thread, Scene};
@@ -29,6 +29,8 @@ pub(super) struct BlockRenderer<'a> {
     pub filter: ReconstructionFilter,
     pub width: u32,
     pub height: u32,
+    /// Where the film lies in the camera's frame (a crop window, or all of it).
+    pub window: FilmWindow,
     /// AOV layers of the film (`moment`'s, the alpha channel's), 0 for most renders.
     pub aov_layers: usize,
     /// How camera samples fill the alpha channel, the last AOV layer (`rgba` films).
@@ -65,6 +67,7 @@ impl<'a> BlockRenderer<'a> {
             filter: plan.film.filter,
             width: plan.film.width,
             height: plan.film.height,
+            window: plan.film.window(),
             aov_layers: plan.film.aov_layers().len(),
             alpha: if plan.film.has_alpha_layer() { integrator.alpha_rule() } else { None },
             densities: None,
@@ -143,7 +146,7 @@ impl<'a> BlockRenderer<'a> {
                 samples += (end - first) as u64;
                 for index in first..end {
                     let mut s = self.sampler.pixel_sampler(pixel, width, index);
-                    let (mut pos, film_uv) = film_position(pixel, &mut s, width, height);
+                    let (mut pos, film_uv) = film_position(pixel, &mut s, &self.window);
                     let l = match self.batch {
                         1 => estimate(&mut s, film_uv, aovs),
                         n => self.replicate(pixel, index, n, &mut estimate, aovs),
@@ -188,7 +191,7 @@ impl<'a> BlockRenderer<'a> {
         let mut sum = Spectrum::ZERO;
         for j in 0..n {
             let mut s = scramble.pixel_sampler(pixel, self.width, j);
-            let (_, film_uv) = film_position(pixel, &mut s, self.width, self.height);
+            let (_, film_uv) = film_position(pixel, &mut s, &self.window);
             sum += estimate(&mut s, film_uv, aovs);
         }
         sum / n as f32

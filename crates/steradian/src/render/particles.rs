@@ -39,7 +39,10 @@ pub(super) fn render_particles(
     let mut template = plan.film.clone();
     template.clear();
     let (width, height, filter) = (template.width, template.height, template.filter);
-    let paths_per_pass = width as u64 * height as u64;
+    // one light path per pixel of the camera's full frame, a crop window's included (as
+    // Mitsuba traces them): each pixel of the window is then as noisy as in the full render
+    let frame = template.window().full_size();
+    let paths_per_pass = frame.x as u64 * frame.y as u64;
     let next = AtomicUsize::new(first as usize);
     let mut merged = first;
     std::thread::scope(|scope| {
@@ -54,12 +57,12 @@ pub(super) fn render_particles(
                 }
                 let mut block = SplatBlock::new(width, height, filter);
                 let rays_before = rays_traced_on_this_thread();
-                for y in 0..height {
+                for y in 0..frame.y {
                     if cancelled() {
                         return;
                     }
-                    for x in 0..width {
-                        let mut s = sampler.pixel_sampler(UVec2::new(x, y), width, pass);
+                    for x in 0..frame.x {
+                        let mut s = sampler.pixel_sampler(UVec2::new(x, y), frame.x, pass);
                         tracer.trace(scene, sensor, &mut s, &mut block);
                     }
                 }

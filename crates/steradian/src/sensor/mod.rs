@@ -23,7 +23,7 @@ pub use workplane::{Workplane, WorkplaneMode, WorkplaneUnit};
 
 use glam::{UVec2, Vec2};
 
-use crate::film::Film;
+use crate::film::{Film, FilmWindow};
 use crate::geometry::{Aabb, Ray};
 use crate::sampling::{PixelSampler, Sampler};
 
@@ -174,10 +174,11 @@ impl SensorKind {
 }
 
 /// Where on the film a camera sample lands: its pixel plus the sampler's first 2-D draw, in
-/// pixels (where the film splats it), and the same as a fraction of the film (`film_uv`, what
-/// [`Sensor::start_ray`] takes). The render and the branch-count pilot start every sample here.
+/// pixels (where the film splats it), and the same as a fraction of the camera's full frame
+/// (`film_uv`, what [`Sensor::start_ray`] takes; the film is `window` of that frame, all of it
+/// unless cropped). The render and the branch-count pilot start every sample here.
 #[inline]
-pub fn film_position(pixel: UVec2, s: &mut PixelSampler, width: u32, height: u32) -> (Vec2, Vec2) {
+pub fn film_position(pixel: UVec2, s: &mut PixelSampler, window: &FilmWindow) -> (Vec2, Vec2) {
     let pos = pixel.as_vec2() + s.next_2d();
-    (pos, pos / Vec2::new(width as f32, height as f32))
+    (pos, window.frame_uv(pos))
 }

@@ -596,3 +596,27 @@ fn impossible_albedos_and_iors_are_errors_and_energy_gain_a_warning() {
     let w = &job.warnings[0];
     assert!(w.starts_with("bright.xml:5:22: warning: ") && w.contains("above 1"), "{w}");
 }
+
+/// Mitsuba's sensor `shutter_open`/`shutter_close` and `hdrfilm`'s `compensate` are accepted
+/// (they change nothing steradian renders); a shutter that closes before it opens is an error
+/// at the property, as in Mitsuba.
+#[test]
+fn shutter_and_compensate_are_accepted_and_checked() {
+    let sensor = |props: &str| {
+        scene(&format!(
+            "<integrator type=\"path\"/>\n<sensor type=\"perspective\">\n{props}\n\
+             <film type=\"hdrfilm\"><boolean name=\"compensate\" value=\"true\"/></film>\n</sensor>"
+        ))
+    };
+    let ok = |xml: &str| load_string(xml, Path::new("ok.xml"), Path::new("."), &[]).unwrap();
+    ok(&sensor(
+        "<float name=\"shutter_open\" value=\"0.5\"/><float name=\"shutter_close\" value=\"1.5\"/>",
+    ));
+    ok(&sensor(""));
+    let e = err(&sensor(
+        "<float name=\"shutter_open\" value=\"2\"/>\n<float name=\"shutter_close\" value=\"1\"/>",
+    ));
+    check(&e, 5, 1, &["the shutter must open", "shutter_close = 1"]);
+    let e = err(&sensor("<float name=\"shutter_open\" value=\"1\"/>"));
+    check(&e, 4, 1, &["shutter_open = 1", "shutter_close = 0"]);
+}

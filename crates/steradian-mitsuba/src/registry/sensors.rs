@@ -1,7 +1,9 @@
 //! Sensor plugins (`perspective`, `thinlens`, `orthographic`, `batch`, meters, `distant`, and
 //! steradian's own `workplane`) with their film (`hdrfilm`), reconstruction
 //! filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`, `stratified`,
-//! `multijitter`, `orthogonal`, `ldsampler`).
+//! `multijitter`, `orthogonal`, `ldsampler`). Every sensor also takes Mitsuba's `shutter_open`
+//! and `shutter_close`, which change nothing (see [`shutter`]); `hdrfilm` takes `compensate`,
+//! which its f64 sums make moot.
 
 use glam::{UVec2, Vec2};
 use steradian::emitter::horizontal_illuminance;
@@ -131,6 +133,8 @@ fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
         })?,
         None => ComponentFormat::default(),
     };
+    // Kahan-compensated sums in Mitsuba's f32 film; steradian's sums are f64 anyway
+    p.get_bool("compensate")?;
     if p.get_bool("sample_border")? == Some(true) {
         return Err(LoadError::at(
             p.position("sample_border").unwrap(),
@@ -381,8 +385,29 @@ pub(crate) fn build(
         None => Sampler::default(),
     };
     let kind = build_kind(b, node, &film, shape)?;
+    shutter(node)?;
     node.check_all_used()?;
     Ok(Sensor { kind, film, sampler, id: node.id.clone().unwrap_or_default() })
+}
+
+/// Every Mitsuba sensor's `shutter_open` and `shutter_close` (s, default 0 and 0): checked as
+/// Mitsuba checks them (finite, open ≤ close) and otherwise without effect: nothing a scene
+/// file describes moves (Mitsuba 3 has no animated transforms in XML either), so a sample's
+/// time changes no ray.
+fn shutter(node: &PluginNode) -> Result<(), LoadError> {
+    let p = &node.props;
+    let open = p.get_float("shutter_open")?.unwrap_or(0.0);
+    let close = p.get_float("shutter_close")?.unwrap_or(0.0);
+    if !(open.is_finite() && close.is_finite() && open <= close) {
+        return Err(LoadError::at(
+            p.position("shutter_close").or(p.position("shutter_open")).unwrap_or(&node.pos),
+            format!(
+                "{}: the shutter must open (shutter_open = {open}) no later than it closes (shutter_close = {close})",
+                node.desc()
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// Only an `irradiancemeter` may be declared inside a shape.

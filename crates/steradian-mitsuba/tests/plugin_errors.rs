@@ -620,3 +620,13 @@ fn shutter_and_compensate_are_accepted_and_checked() {
     let e = err(&sensor("<float name=\"shutter_open\" value=\"1\"/>"));
     check(&e, 4, 1, &["shutter_open = 1", "shutter_close = 0"]);
 }
+
+/// `direct` takes `shading_samples` or the two per-technique counts, not both (as Mitsuba).
+#[test]
+fn direct_refuses_both_sample_counts() {
+    let xml = scene(
+        "<integrator type=\"direct\">\n<integer name=\"shading_samples\" value=\"2\"/>\n\
+         <integer name=\"bsdf_samples\" value=\"1\"/>\n</integrator>\n<sensor type=\"perspective\"/>",
+    );
+    check(&err(&xml), 3, 1, &["give either 'shading_samples'", "not both"]);
+}

@@ -213,6 +213,18 @@ fn volpath_with(
 }
 
 fn direct(node: &PluginNode) -> Result<Integrator, LoadError> {
+    let p = &node.props;
+    if p.contains("shading_samples")
+        && (p.contains("emitter_samples") || p.contains("bsdf_samples"))
+    {
+        return Err(LoadError::at(
+            p.position("shading_samples").unwrap_or(&node.pos),
+            format!(
+                "{}: give either 'shading_samples' or 'emitter_samples'/'bsdf_samples', not both (Mitsuba refuses both)",
+                node.desc()
+            ),
+        ));
+    }
     let shading = count(node, "shading_samples", DirectIntegrator::DEFAULT_SHADING_SAMPLES as i64)?;
     let emitter_samples = count(node, "emitter_samples", shading as i64)?;
     let bsdf_samples = count(node, "bsdf_samples", shading as i64)?;

@@ -154,6 +154,30 @@ def test_moment_and_aov_layers_come_after_rgb_as_in_mitsuba():
     assert np.all(image[..., 6] == 1.0) and np.all(image[..., 7] == 0.0)
 
 
+def test_an_rgba_film_adds_alpha_last_and_develops_from_sums():
+    # a sphere filling part of the frame, no environment: alpha is 1 on it, 0 off it
+    xml = """<scene version="3.0.0">
+    <integrator type="path"/>
+    <sensor type="perspective"><float name="fov" value="40"/>
+        <transform name="to_world"><lookat origin="0, 0, 5" target="0, 0, 0" up="0, 1, 0"/></transform>
+        <film type="hdrfilm"><integer name="width" value="12"/><integer name="height" value="10"/>
+            <string name="pixel_format" value="rgba"/><rfilter type="box"/></film></sensor>
+    <emitter type="point"><point name="position" x="0" y="2" z="3"/><rgb name="intensity" value="5"/></emitter>
+    <shape type="sphere"><float name="radius" value="0.9"/></shape>
+</scene>"""
+    scene = steradian.load_string(xml)
+    assert scene.channel_names() == ["R", "G", "B", "A"]
+    image = scene.render(spp=8, seed=1)
+    assert image.shape == (10, 12, 4)
+    alpha = image[..., 3]
+    assert alpha[5, 6] == 1.0 and alpha[0, 0] == 0.0
+    assert np.all(image[..., :3][alpha == 0.0] == 0.0)
+    rgb = steradian.load_string(xml.replace('"rgba"', '"rgb"')).render(spp=8, seed=1)
+    assert np.array_equal(rgb, image[..., :3])
+    sums = scene.render_range(0, 8, 8, 1)
+    assert np.array_equal(scene.develop(sums), image)
+
+
 # A diffuse plane (rho = 0.5) under a uniform sky (L = 1) seen from above: every pixel is
 # 0.5, noisy through the sky's sampling, so a target error stops well before the cap.
 PLANE = """<scene version="3.0.0">

@@ -296,9 +296,10 @@ impl Scene {
     ///   bit for bit. A checkpoint of another scene, spp, seed, sensor or resolution raises
     ///   ValueError. The file is deleted when the render completes.
     ///
-    /// With a `moment` or `aov` integrator a radiance render of a camera returns shape
-    /// (H, W, 3 + k): R, G, B and then the integrator's layers, as `mi.render` does; their
-    /// names are `channel_names()`.
+    /// With a `moment` or `aov` integrator, or a film whose `pixel_format` has alpha
+    /// (`rgba`), a radiance render of a camera returns shape (H, W, 3 + k): R, G, B, the
+    /// integrator's layers, then `A`; their names are `channel_names()`. (The colour stays
+    /// R, G, B whatever the `pixel_format`: luminance and XYZ are for the files.)
     ///
     /// The GIL is released while rendering. Ctrl-C stops the render and raises
     /// `KeyboardInterrupt`.
@@ -578,9 +579,7 @@ impl Scene {
         let s = &sums.inner;
         let sensor = self.inner.scene.sensors.get(s.header.sensor as usize);
         let layers = match sensor {
-            Some(sn) if !sn.is_meter() && s.header.aov_layers > 0 => {
-                self.inner.integrator.aov_layers()
-            }
+            Some(sn) if s.header.aov_layers > 0 => self.inner.camera_layers(sn),
             _ => Vec::new(),
         };
         if layers.len() != s.header.aov_layers as usize {
@@ -615,15 +614,15 @@ impl Scene {
 
     /// The channel names of a radiance render of a sensor (index or id; default the first):
     /// `["R", "G", "B"]`, followed for a camera under `moment` or `aov` by each layer's
-    /// channels (`"pp.X"`, `"m2_pp.X"`, `"dd.T"`, ...), in the order `render` returns them.
+    /// channels (`"pp.X"`, `"m2_pp.X"`, `"dd.T"`, ...) and for an `rgba` film by `"A"`, in the
+    /// order `render` returns them.
     #[pyo3(signature = (sensor=None))]
     fn channel_names(&self, sensor: Option<SensorArg>) -> PyResult<Vec<String>> {
         let i = self.sensor(sensor)?;
-        let meter = self.inner.scene.sensors.get(i).is_some_and(|s| s.is_meter());
         let mut names: Vec<String> = ["R", "G", "B"].map(String::from).to_vec();
-        if !meter {
-            for l in self.inner.integrator.aov_layers() {
-                names.extend(l.channels.iter().map(|c| format!("{}.{c}", l.name)));
+        if let Some(s) = self.inner.scene.sensors.get(i) {
+            for l in self.inner.camera_layers(s) {
+                names.extend(l.channel_names());
             }
         }
         Ok(names)

@@ -135,6 +135,17 @@ impl FilmWindow {
 }
 
 impl AovLayer {
+    /// Its channels' names in a file or array: `<name>.<channel>`, or `<channel>` for a
+    /// layer without a name (the alpha channel's `A`).
+    pub fn channel_names(&self) -> Vec<String> {
+        self.channels
+            .iter()
+            .map(
+                |c| if self.name.is_empty() { c.to_string() } else { format!("{}.{c}", self.name) },
+            )
+            .collect()
+    }
+
     /// The alpha channel of an `rgba` film (`pixel_format.rs`): the file's `A`, kept as the
     /// last AOV layer.
     pub fn alpha() -> AovLayer {

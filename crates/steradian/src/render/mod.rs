@@ -75,3 +75,19 @@ pub struct Job {
     /// digest covers. Empty for a scene built in code.
     pub inputs: Vec<std::path::PathBuf>,
 }
+
+impl Job {
+    /// The AOV layers a radiance render of camera `sensor` keeps beside the image: the
+    /// integrator's (`moment`, `aov`), then the alpha channel of an `rgba`-like film. Meters
+    /// keep none.
+    pub fn camera_layers(&self, sensor: &crate::sensor::Sensor) -> Vec<crate::film::AovLayer> {
+        if sensor.is_meter() {
+            return Vec::new();
+        }
+        let mut layers = self.integrator.aov_layers();
+        if sensor.film.pixel_format.has_alpha() && self.integrator.alpha_rule().is_some() {
+            layers.push(crate::film::AovLayer::alpha());
+        }
+        layers
+    }
+}

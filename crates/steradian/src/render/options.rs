@@ -343,16 +343,13 @@ impl<'a> Plan<'a> {
         let mut film = sensor.film.clone();
         film.clear();
         if !meter && opts.quantity == PixelQuantity::Sensor {
-            let mut layers = job.integrator.aov_layers();
-            if film.pixel_format.has_alpha() {
-                if job.integrator.alpha_rule().is_none() {
-                    return Err(RenderError::BadOption {
-                        option: "pixel_format",
-                        reason: "an alpha channel needs camera samples; ptracer has none",
-                    });
-                }
-                layers.push(crate::film::AovLayer::alpha());
+            if film.pixel_format.has_alpha() && job.integrator.alpha_rule().is_none() {
+                return Err(RenderError::BadOption {
+                    option: "pixel_format",
+                    reason: "an alpha channel needs camera samples; ptracer has none",
+                });
             }
+            let layers = job.camera_layers(sensor);
             if layers.len() > super::MAX_AOV_LAYERS {
                 return Err(RenderError::BadOption {
                     option: "integrator",

@@ -2,6 +2,10 @@
 //! (its Z-test rule, a 4096-spp `llvm_ad_rgb` reference): null spheres are invisible to camera
 //! rays but stop shadow rays, and an emitter with a null BSDF shows its emission; the same
 //! scene with the null spheres made diffuse fails the test; `null` takes no parameters.
+//! `reference/null-path.xml`: Mitsuba's `path` counts a sample only once its path scatters
+//! off a lobe that is not null, so a null-BSDF emitter shows only where something lies behind
+//! it and a mask of opacity 0.4 renders about 0.4² as bright; steradian's `path` matches, and
+//! its `volpath`, which has no such rule (as Mitsuba's has none), fails that reference.
 
 mod common;
 
@@ -49,4 +53,19 @@ fn null_takes_no_parameters() {
         steradian_mitsuba::load_string(xml, Path::new("n.xml"), Path::new("."), &[]).unwrap_err();
     assert_eq!(e.pos.as_ref().map(|p| (p.line, p.col)), Some((4, 19)), "{e}");
     assert!(e.message.contains("reflectance"), "{e}");
+}
+
+#[test]
+fn path_counts_only_paths_that_scatter_as_mitsuba_does() {
+    let job =
+        steradian_mitsuba::load_file(&data("null-path.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
+    let z = z_test_against(&job, SPP, "null-path", "null-path");
+    assert!(z.passes(), "{:.4} of the pixels pass", z.pass_fraction());
+    let volpath = common::reference_scene_with(
+        "null-path.xml",
+        "<integrator type=\"path\"/>",
+        "<integrator type=\"volpath\"/>",
+    );
+    let z = z_test_against(&volpath, SPP, "null-path", "null-path under volpath");
+    assert!(!z.passes(), "{:.4} of the pixels pass under volpath", z.pass_fraction());
 }

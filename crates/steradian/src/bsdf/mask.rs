@@ -18,11 +18,10 @@
 //! and `direct` test visibility with `ray_test`, for which a masked surface is opaque
 //! (only `volpath` traces through null interfaces), and steradian does the same.
 //!
-//! **Where steradian differs.** Mitsuba 3.9.1's `path` renders a mask of fractional opacity
-//! a at about a² of the opaque surface's brightness (a flat masked plane under a point light:
-//! 0.1221 of it at a = 0.35, 0.359 at a = 0.6), where its `volpath` and `direct` give a, as
-//! steradian's `path`, `volpath` and `direct` all do; masks of opacity 0 or 1 (cut-outs)
-//! agree everywhere.
+//! Under `path` a mask of fractional opacity a renders at about a² of the opaque surface
+//! where nothing lies behind it, as in Mitsuba 3.9.1 (its `path` counts a sample only once
+//! the path scatters off a lobe that is not null: `integrator/path.rs`, "Null surfaces");
+//! `volpath` and `direct` give a.
 
 use glam::{Vec2, Vec3};
 

@@ -41,7 +41,7 @@
 use glam::UVec2;
 use rayon::prelude::*;
 
-use super::path::{Branches, RayCount};
+use super::path::{Branches, Counts, RayCount};
 use super::PathTracer;
 use crate::sampling::{mix64, Sampler};
 use crate::scene::Scene;
@@ -175,8 +175,11 @@ pub fn pilot(
                         values.resize(start + 1 + n as usize, 0.0);
                         let Some(ray) = sensor.start_ray(film_uv, &mut ps) else { continue };
                         let (mut first, mut rays) = (Spectrum::ZERO, RayCount::default());
-                        let hit = probe.first_hit(scene, &ray, &mut first, &mut rays);
-                        values[start] = luminance(first) as f64;
+                        // the chance each path counts, as `li` keeps it (`path.rs`): the first
+                        // hit's emission weighs by the branches' mean chance
+                        let mut counts = probe.initial_chance(scene);
+                        let hit = probe.first_hit(scene, &ray, &mut first, &mut counts, &mut rays);
+                        let mut counted = 0.0;
                         out.rays[c] += rays.0 as u64;
                         if let Some((si, st)) = hit {
                             probe.for_each_branch(
@@ -185,12 +188,16 @@ pub fn pilot(
                                 st,
                                 &mut ps,
                                 n,
-                                |b, l, rays: RayCount| {
+                                counts,
+                                |b, l, count, rays: RayCount| {
                                     values[start + 1 + b] = luminance(l) as f64;
+                                    counted += count;
                                     out.rays[c] += rays.0 as u64;
                                 },
                             );
+                            counts.0 = counted / n as f32;
                         }
+                        values[start] = luminance(first * counts.weight()) as f64;
                         // the render drops a sample that is not finite; here such a value counts
                         // as 0, so that it cannot poison the variances (it shapes only the choice)
                         for v in &mut values[start..] {

@@ -5,7 +5,8 @@
 //! `reference/null-path.xml`: Mitsuba's `path` counts a sample only once its path scatters
 //! off a lobe that is not null, so a null-BSDF emitter shows only where something lies behind
 //! it and a mask of opacity 0.4 renders about 0.4² as bright; steradian's `path` matches, and
-//! its `volpath`, which has no such rule (as Mitsuba's has none), fails that reference.
+//! its `volpath` and `prb`, which have no such rule (as Mitsuba's have none), fail that
+//! reference.
 
 mod common;
 
@@ -68,4 +69,12 @@ fn path_counts_only_paths_that_scatter_as_mitsuba_does() {
     );
     let z = z_test_against(&volpath, SPP, "null-path", "null-path under volpath");
     assert!(!z.passes(), "{:.4} of the pixels pass under volpath", z.pass_fraction());
+    // Mitsuba's prb keeps those paths too: its image is path's without the rule
+    let prb = common::reference_scene_with(
+        "null-path.xml",
+        "<integrator type=\"path\"/>",
+        "<integrator type=\"prb\"><integer name=\"max_depth\" value=\"-1\"/></integrator>",
+    );
+    let z = z_test_against(&prb, SPP, "null-path", "null-path under prb");
+    assert!(!z.passes(), "{:.4} of the pixels pass under prb", z.pass_fraction());
 }

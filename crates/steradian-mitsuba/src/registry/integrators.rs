@@ -10,7 +10,7 @@
 
 use steradian::emitter::LightSelection;
 use steradian::integrator::{
-    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility,
+    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, NullPaths,
     DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
 };
 use steradian::integrator::{
@@ -108,15 +108,25 @@ fn path(node: &PluginNode) -> Result<Integrator, LoadError> {
 /// `max_depth` where a scene leaves it unset under Mitsuba's differentiable integrators.
 const RB_DEFAULT_MAX_DEPTH: Option<u32> = Some(6);
 
-/// `prb`: path replay backpropagation, whose image is `path`'s.
+/// `prb`: path replay backpropagation, whose image is `path`'s except that paths through
+/// null surfaces alone count (`NullPaths::Kept`).
 fn prb(node: &PluginNode) -> Result<Integrator, LoadError> {
-    path_with(node, RB_DEFAULT_MAX_DEPTH)
+    keep_null_paths(path_with(node, RB_DEFAULT_MAX_DEPTH)?)
 }
 
 /// `prb_projective`: `prb` with projective sampling for visibility gradients.
 fn prb_projective(node: &PluginNode) -> Result<Integrator, LoadError> {
     projective_parameters(node)?;
-    path_with(node, RB_DEFAULT_MAX_DEPTH)
+    keep_null_paths(path_with(node, RB_DEFAULT_MAX_DEPTH)?)
+}
+
+/// The differentiable integrators keep the paths that `path` zeroes (Mitsuba 3.9.1: an
+/// emitter with a null BSDF seen against nothing shows under `prb`, not under `path`).
+fn keep_null_paths(integrator: Integrator) -> Result<Integrator, LoadError> {
+    Ok(match integrator {
+        Integrator::Path(p) => Integrator::Path(PathTracer { null_paths: NullPaths::Kept, ..p }),
+        other => other,
+    })
 }
 
 /// `direct_projective`: direct illumination (Mitsuba fixes `max_depth` at 2 and `rr_depth` at
@@ -129,6 +139,7 @@ fn direct_projective(node: &PluginNode) -> Result<Integrator, LoadError> {
         p.get_int(name)?;
     }
     Ok(Integrator::Path(PathTracer {
+        null_paths: NullPaths::Kept,
         max_depth: Some(2),
         emitters: visibility(p.get_bool("hide_emitters")?),
         light_selection: light_selection(node)?,

@@ -33,6 +33,8 @@
 //! non-null, as Mitsuba's LLVM variants count it (its scalar variant ignores the last
 //! vertex); a split camera sample weighs its first hit's emission by the mean f of its
 //! branches. A scene where every first hit scatters gives the same image bit for bit.
+//! Mitsuba's `prb`, `prb_projective` and `direct_projective` keep every path
+//! ([`NullPaths::Kept`]), as they do in Mitsuba.
 //!
 //! **The last vertex** (one segment left): where light sampling alone has bounded weights
 //! ([`Scene::light_sampling_suffices`]: only delta lights; or a Lambertian vertex under spheres
@@ -87,6 +89,20 @@ pub struct PathTracer {
     pub branches: Branches,
     /// How a path's last vertex estimates the light arriving there.
     pub last_vertex: LastVertex,
+    /// Whether paths that never scatter off a non-null lobe count (module docs).
+    pub null_paths: NullPaths,
+}
+
+/// Whether a path that never scatters off a lobe that is not null counts (module docs, "Null
+/// surfaces").
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum NullPaths {
+    /// Zeroed, unless an environment is visible: Mitsuba's `path`.
+    #[default]
+    Zeroed,
+    /// Kept: Mitsuba's `prb`, `prb_projective` and `direct_projective`, whose images are
+    /// otherwise `path`'s.
+    Kept,
 }
 
 /// The estimator at a path's last vertex (the vertex from which only one more segment is
@@ -134,6 +150,7 @@ impl Default for PathTracer {
             light_selection: LightSelection::default(),
             branches: Branches::default(),
             last_vertex: LastVertex::default(),
+            null_paths: NullPaths::default(),
         }
     }
 }
@@ -302,13 +319,14 @@ impl PathTracer {
     #[inline]
     pub(super) fn initial_chance(&self, scene: &Scene) -> CountChance {
         let visible = self.emitters == EmitterVisibility::Visible;
-        CountChance(if visible && scene.has_light_at_infinity() { 1.0 } else { 0.0 })
+        let kept = self.null_paths == NullPaths::Kept;
+        CountChance(if kept || visible && scene.has_light_at_infinity() { 1.0 } else { 0.0 })
     }
 
     /// Radiance arriving along `camera_ray` (W/(m²·sr)): one camera sample, split into
     /// [`Branches::count`] paths at its first hit.
     pub fn li(&self, scene: &Scene, camera_ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
-        if scene.has_null_surfaces() {
+        if scene.has_null_surfaces() && self.null_paths == NullPaths::Zeroed {
             self.li_counting(scene, camera_ray, sampler, self.initial_chance(scene))
         } else {
             self.li_counting(scene, camera_ray, sampler, EveryPathCounts)

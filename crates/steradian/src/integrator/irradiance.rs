@@ -38,6 +38,9 @@ fn reflected_only(integrator: &Integrator) -> Option<Integrator> {
             }
             let mut p = p.clone();
             p.emitters = EmitterVisibility::Hidden;
+            // the meter's light is physical: no path is zeroed for crossing only null
+            // surfaces (`path.rs`, "Null surfaces": Mitsuba's camera-image rule)
+            p.null_paths = super::NullPaths::Kept;
             Some(Integrator::Path(p))
         }
         Integrator::Direct(d) => {

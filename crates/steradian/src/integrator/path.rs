@@ -34,7 +34,8 @@
 //! vertex); a split camera sample weighs its first hit's emission by the mean f of its
 //! branches. A scene where every first hit scatters gives the same image bit for bit.
 //! Mitsuba's `prb`, `prb_projective` and `direct_projective` keep every path
-//! ([`NullPaths::Kept`]), as they do in Mitsuba.
+//! ([`NullPaths::Kept`]), as they do in Mitsuba; so do meters and irradiance maps, whose
+//! readings stay physical (`irradiance.rs`).
 //!
 //! **The last vertex** (one segment left): where light sampling alone has bounded weights
 //! ([`Scene::light_sampling_suffices`]: only delta lights; or a Lambertian vertex under spheres

@@ -30,8 +30,9 @@
 //! light: 0.1221 at a = 0.35, as Mitsuba). `volpath` and `direct` have no such rule, in
 //! steradian as in Mitsuba. steradian carries the chance that the path counts, f: 1 after a
 //! non-null lobe, at the last vertex (`max_depth`) the chance that its lobe choice is
-//! non-null, as Mitsuba's LLVM variants count it (its scalar variant ignores the last
-//! vertex); a split camera sample weighs its first hit's emission by the mean f of its
+//! non-null, as Mitsuba's `llvm_ad_rgb` counts it (its `scalar_rgb` counts instead a path whose
+//! last vertex is an emitter: a null-BSDF emitter at `max_depth` 1 shows there, not in
+//! `llvm_ad_rgb` nor in steradian); a split camera sample weighs its first hit's emission by the mean f of its
 //! branches. A scene where every first hit scatters gives the same image bit for bit.
 //! Mitsuba's `prb`, `prb_projective` and `direct_projective` keep every path
 //! ([`NullPaths::Kept`]), as they do in Mitsuba; so do meters and irradiance maps, whose

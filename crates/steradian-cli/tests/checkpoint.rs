@@ -129,6 +129,8 @@ fn a_checkpoint_of_another_render_is_refused() {
     };
     refused(&with("res=24", "1536", "4", &[]), "seed 4, expected 3");
     refused(&with("res=24", "1024", "3", &[]), "spp 1024, expected 1536");
+    // the scene's own spp, whose passes the checkpoint's range does not fit: still named
+    refused(&["render", "--resume", ck_arg, "-D", "res=24", "--seed", "3"], "expected 1536");
     refused(&with("res=16", "1536", "3", &[]), "resolution 16x16, expected 24x24");
     refused(&with("res=24", "1536", "3", &["-D", "spp=8"]), "scene (digest of its files");
     std::fs::write(dir.join("junk.ck"), "not a checkpoint").expect("writes");

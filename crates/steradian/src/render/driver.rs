@@ -183,12 +183,16 @@ pub fn render(job: &Job, opts: &RenderOptions) -> Result<RenderOutput, RenderErr
         (None, Some(sums)) => (sums.end(), spp),
         (None, None) => (0, spp),
     };
+    // resumed sums of another render (another spp, seed, scene, ...) say which option differs,
+    // before their range is measured against this render's passes
+    if let Some(resumed) = &opts.resume {
+        resumed.check_same_render(&header).map_err(RenderError::Resume)?;
+    }
     if first > end || !bounds.contains(&first) || !bounds.contains(&end) {
         return Err(RenderError::BadRange { first, end, bounds });
     }
     let mut sums = match &opts.resume {
         Some(resumed) => {
-            resumed.check_same_render(&header).map_err(RenderError::Resume)?;
             if resumed.end() != first {
                 return Err(RenderError::Resume(super::SumsError::NotContiguous {
                     expected: resumed.end(),

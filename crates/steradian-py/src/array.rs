@@ -20,7 +20,7 @@ pub fn to_array<'py>(py: Python<'py>, image: &Image) -> PyResult<Bound<'py, PyAn
 }
 
 /// A float32 array (H, W, 3 + k) of `image`'s R, G, B followed by each AOV layer's channels
-/// (Mitsuba's `mi.render` layout for `moment` and `aov`).
+/// (Mitsuba's `mi.render` layout for `moment` and `aov`; just R, G, B without layers).
 pub fn to_channels_array<'py>(
     py: Python<'py>,
     image: &Image,

@@ -337,12 +337,7 @@ impl Scene {
             target_error,
             allocation,
         )?;
-        let aovs = out.aov_images();
-        if aovs.is_empty() {
-            to_array(py, &out.image())
-        } else {
-            to_channels_array(py, &out.image(), &aovs)
-        }
+        to_channels_array(py, &out.image(), &out.aov_images())
     }
 
     /// Renders as `render` does (the same parameters, the same image bit for bit) and returns
@@ -589,14 +584,10 @@ impl Scene {
                 layers.len()
             )));
         }
-        let image = s.image();
-        if layers.is_empty() {
-            return to_array(py, &image);
-        }
         let film = s.film();
         let aovs: Vec<_> =
             layers.into_iter().enumerate().map(|(k, l)| (l, film.develop_aov(k))).collect();
-        to_channels_array(py, &image, &aovs)
+        to_channels_array(py, &s.image(), &aovs)
     }
 
     /// The files the scene was read from (the scene file, its includes, meshes, images), in
@@ -703,12 +694,7 @@ pub struct RenderResult {
 
 impl RenderResult {
     fn new(py: Python<'_>, out: &RenderOutput) -> PyResult<RenderResult> {
-        let aovs = out.aov_images();
-        let image = if aovs.is_empty() {
-            to_array(py, &out.image())?
-        } else {
-            to_channels_array(py, &out.image(), &aovs)?
-        };
+        let image = to_channels_array(py, &out.image(), &out.aov_images())?;
         Ok(RenderResult {
             image: image.unbind(),
             stderr: to_array(py, &out.stderr_image())?.unbind(),

@@ -134,8 +134,15 @@ enum LastVertexLights {
     Mis,
 }
 
+/// Whether [`Scene::transmittance`] follows the media along its way or ignores them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MediaAlong {
+    Followed,
+    Ignored,
+}
+
 /// The most surfaces a shadow ray crosses in [`Scene::transmittance`].
-pub(crate) const MAX_NULL_CROSSINGS: usize = 256;
+const MAX_NULL_CROSSINGS: usize = 256;
 
 /// The most emitters [`LastVertexLights::CheckEach`] checks at a vertex (one distance test
 /// each).
@@ -471,8 +478,10 @@ impl Scene {
     /// in a medium) to the point at distance `dist` along unit direction `wi` (infinite:
     /// out of the scene), starting in `medium`: the product of each medium's transmittance
     /// over its stretch and of the null transmission ([`Bsdf::null_transmission`]) of each
-    /// surface crossed, where media change as [`Scene::medium_after`] says. Zero where an
-    /// opaque surface lies between.
+    /// surface crossed, where media change as [`Scene::medium_after`] says (with
+    /// [`MediaAlong::Ignored`], of the null transmissions alone, as for `path`, which sees no
+    /// media). Zero where an opaque surface lies between.
+    #[allow(clippy::too_many_arguments)]
     pub fn transmittance(
         &self,
         p: Vec3,
@@ -480,8 +489,12 @@ impl Scene {
         wi: Vec3,
         dist: f32,
         mut medium: Option<u32>,
+        media: MediaAlong,
         sampler: &mut PixelSampler,
     ) -> Spectrum {
+        if media == MediaAlong::Ignored {
+            medium = None;
+        }
         let shorten = 1.0 - crate::geometry::interaction::SHADOW_EPSILON;
         let target = p + wi * dist;
         let mut origin = crate::geometry::offset_ray_origin(p, n, wi);
@@ -515,7 +528,9 @@ impl Scene {
             if tr == Spectrum::ZERO {
                 return tr;
             }
-            medium = self.medium_after(&si, ray.d, medium);
+            if media == MediaAlong::Followed {
+                medium = self.medium_after(&si, ray.d, medium);
+            }
             origin = crate::geometry::offset_ray_origin(si.p, si.n, ray.d);
         }
         // a shadow ray still crossing surfaces after this many is caught between coincident

@@ -26,7 +26,7 @@ use super::{EmitterVisibility, Integrator, PathTracer, VolPathTracer};
 use crate::emitter::{Emitter, Support};
 use crate::geometry::{offset_ray_origin, Frame, Ray};
 use crate::sampling::{warp, PixelSampler};
-use crate::scene::Scene;
+use crate::scene::{MediaAlong, Scene};
 use crate::Spectrum;
 
 /// The integrator with emission at the first hit hidden, and how many segments remain.
@@ -76,7 +76,8 @@ fn volpath_irradiance(
     if let Some(es) = scene.sample_emitter_direction(p, sampler.next_2d()) {
         let cos = n.dot(es.wi);
         if cos > 0.0 {
-            let tr = scene.transmittance(p, n, es.wi, es.dist, medium, sampler);
+            let tr =
+                scene.transmittance(p, n, es.wi, es.dist, medium, MediaAlong::Followed, sampler);
             let w = match es.support {
                 Support::Delta => 1.0,
                 Support::Extended => power_heuristic(es.pdf, cos_pdf(es.wi)),

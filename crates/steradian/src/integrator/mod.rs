@@ -14,7 +14,7 @@ mod path;
 mod ptracer;
 mod volpath;
 
-pub use alpha::{camera_ray_alpha, AlphaRule, MediaInAlpha};
+pub use alpha::{camera_ray_alpha, AlphaRule};
 pub use aov::{AovField, AovIntegrator};
 pub use branching::{pilot, Pilot, CAMERA_SAMPLE_COST, MAX_AUTO_BRANCHES};
 pub use depth::DepthIntegrator;
@@ -32,7 +32,7 @@ pub use volpath::VolPathTracer;
 use crate::emitter::LightSelection;
 use crate::geometry::Ray;
 use crate::sampling::PixelSampler;
-use crate::scene::Scene;
+use crate::scene::{MediaAlong, Scene};
 use crate::Spectrum;
 
 /// The light transport algorithms. Closed enum: one variant per integrator plugin.
@@ -100,12 +100,11 @@ impl Integrator {
     pub fn alpha_rule(&self) -> Option<AlphaRule> {
         match self {
             Integrator::Path(p) => {
-                Some(AlphaRule::Scattering { media: MediaInAlpha::Ignored, emitters: p.emitters })
+                Some(AlphaRule::Scattering { media: MediaAlong::Ignored, emitters: p.emitters })
             }
-            Integrator::VolPath(p) => Some(AlphaRule::Scattering {
-                media: MediaInAlpha::Attenuating,
-                emitters: p.emitters,
-            }),
+            Integrator::VolPath(p) => {
+                Some(AlphaRule::Scattering { media: MediaAlong::Followed, emitters: p.emitters })
+            }
             Integrator::Direct(_) | Integrator::Depth(_) | Integrator::Aov(_) => {
                 Some(AlphaRule::AnySurface)
             }

@@ -50,7 +50,7 @@ use crate::emitter::{LightSelection, Support};
 use crate::geometry::{is_positive, Ray};
 use crate::medium::{FlightWeight, FreeFlight};
 use crate::sampling::PixelSampler;
-use crate::scene::Scene;
+use crate::scene::{MediaAlong, Scene};
 use crate::Spectrum;
 
 /// The `volpath` (and `volpathmis`) integrator.
@@ -317,7 +317,8 @@ fn next_event(
     if f == Spectrum::ZERO {
         return Spectrum::ZERO;
     }
-    let tr = scene.transmittance(p, n, es.wi, es.dist, medium_towards(es.wi), sampler);
+    let along = MediaAlong::Followed;
+    let tr = scene.transmittance(p, n, es.wi, es.dist, medium_towards(es.wi), along, sampler);
     if tr == Spectrum::ZERO {
         return Spectrum::ZERO;
     }

@@ -41,9 +41,10 @@ pub(super) const SHAPES: &Plugins<BuildShape> = &[
     ("cylinder", cylinder),
     ("shapegroup", group_placeholder),
     ("instance", group_placeholder),
+    ("merge", group_placeholder),
 ];
 
-/// `shapegroup` and `instance` are handled by [`build`] before the table is consulted; the
+/// `shapegroup`, `instance` and `merge` are handled by [`build`] before the table is consulted; the
 /// table names them so that unknown-type errors and the README's list include them.
 fn group_placeholder(s: &ShapeArgs) -> Result<Shape, LoadError> {
     Err(LoadError::at(&s.node.pos, format!("{} cannot be nested in another object", s.node.desc())))
@@ -149,7 +150,7 @@ fn cylinder(s: &ShapeArgs) -> Result<Shape, LoadError> {
 /// A shape's geometry alone, where it only marks out a region (a `distant` sensor's
 /// `target`): a BSDF, emitter or sensor in it is an unused object, hence an error.
 pub(crate) fn build_geometry(b: &Builder, node: &PluginNode) -> Result<Shape, LoadError> {
-    if matches!(node.plugin_type.as_str(), "shapegroup" | "instance") {
+    if matches!(node.plugin_type.as_str(), "shapegroup" | "instance" | "merge") {
         return Err(LoadError::at(&node.pos, format!("{} cannot be nested here", node.desc())));
     }
     let p = &node.props;

@@ -1,5 +1,5 @@
 //! Shapes in the scene: each shape's geometry (`geometry`) with its BSDF, area emitter and
-//! nested sensors; `shapegroup` and `instance`.
+//! nested sensors; `shapegroup`, `instance` and `merge`.
 //!
 //! `shapegroup` (scene level, with an `id`) holds shapes that are not rendered themselves;
 //! each `instance` (a `<ref>` to a group and a `to_world`) places all of them, the instance's
@@ -9,6 +9,17 @@
 //! once, with its own BVH, the first time an instance refers to it, and each instance is one
 //! entry of the scene's BVH (`steradian::accel`'s two-level hierarchy): memory grows with the
 //! groups' geometry, not with the number of instances; a group no instance uses costs nothing.
+//!
+//! `merge` holds shapes and takes no parameters (Mitsuba refuses a `to_world` or any other
+//! property on it). Mitsuba 3 joins its meshes that share a BSDF, media, emitter and sensor into
+//! one mesh so that its ray tracer sees fewer objects, and passes every other child through;
+//! meshes with emitters are never joined (each has an emitter of its own). The image is that of
+//! the children listed in its place, which is what steradian renders: its BVH is over
+//! primitives, not objects, so joining meshes would gain nothing. A `merge` may sit in the
+//! scene, in a `shapegroup` or in another `merge`. Where steradian differs on purpose: the
+//! `shape_index` AOV counts the children one by one, where Mitsuba counts each joined mesh
+//! once; a BSDF or other non-shape object directly inside a `merge` is an error (Mitsuba
+//! ignores it).
 
 use std::sync::Arc;
 
@@ -27,11 +38,43 @@ pub(crate) fn build(b: &mut Builder, node: &Arc<PluginNode>) -> Result<(), LoadE
     match node.plugin_type.as_str() {
         "shapegroup" => check_group(node),
         "instance" => instance(b, node),
+        "merge" => merged(node)?.into_iter().try_for_each(|n| build(b, n)),
         _ => build_placed(b, node),
     }
 }
 
-/// A `shapegroup`'s shapes, after checking what Mitsuba refuses in one.
+/// The shapes a `merge` holds, nested merges flattened, in document order.
+fn merged(merge: &PluginNode) -> Result<Vec<&Arc<PluginNode>>, LoadError> {
+    let mut shapes = Vec::new();
+    for c in &merge.children {
+        c.mark_used();
+        let n = &c.node;
+        if n.tag != ObjectTag::Shape {
+            return Err(LoadError::at(
+                c.pos(),
+                format!("{}: holds shapes only, not {}", merge.desc(), n.desc()),
+            ));
+        }
+        match n.plugin_type.as_str() {
+            "merge" => shapes.extend(merged(n)?),
+            "shapegroup" => {
+                return Err(LoadError::at(
+                    c.pos(),
+                    format!(
+                        "{}: a shapegroup belongs at the scene level, not in a merge",
+                        merge.desc()
+                    ),
+                ))
+            }
+            _ => shapes.push(n),
+        }
+    }
+    merge.check_all_used()?;
+    Ok(shapes)
+}
+
+/// A `shapegroup`'s shapes (those of a `merge` in it included), after checking what Mitsuba
+/// refuses in one.
 fn group_members(group: &PluginNode) -> Result<Vec<&Arc<PluginNode>>, LoadError> {
     let err = |pos: &crate::source::SourcePos, what: String| {
         Err(LoadError::at(pos, format!("{}: {what}", group.desc())))
@@ -39,25 +82,29 @@ fn group_members(group: &PluginNode) -> Result<Vec<&Arc<PluginNode>>, LoadError>
     let mut members = Vec::new();
     for c in &group.children {
         c.mark_used();
-        let n = &c.node;
-        if n.tag != ObjectTag::Shape {
-            return err(c.pos(), format!("holds shapes only, not {}", n.desc()));
+        if c.node.tag != ObjectTag::Shape {
+            return err(c.pos(), format!("holds shapes only, not {}", c.node.desc()));
         }
-        if matches!(n.plugin_type.as_str(), "shapegroup" | "instance") {
-            return err(c.pos(), format!("cannot hold {} (no nested groups)", n.desc()));
+        let shapes = if c.node.plugin_type == "merge" { merged(&c.node)? } else { vec![&c.node] };
+        for n in shapes {
+            if matches!(n.plugin_type.as_str(), "shapegroup" | "instance") {
+                return err(&n.pos, format!("cannot hold {} (no nested groups)", n.desc()));
+            }
+            if let Some(e) = n
+                .children
+                .iter()
+                .find(|e| matches!(e.node.tag, ObjectTag::Emitter | ObjectTag::Sensor))
+            {
+                return err(
+                    e.pos(),
+                    format!(
+                        "{} in a shape group is not supported (Mitsuba 3 refuses emitters and sensors in instanced shapes)",
+                        e.node.desc()
+                    ),
+                );
+            }
+            members.push(n);
         }
-        if let Some(e) =
-            n.children.iter().find(|e| matches!(e.node.tag, ObjectTag::Emitter | ObjectTag::Sensor))
-        {
-            return err(
-                e.pos(),
-                format!(
-                    "{} in a shape group is not supported (Mitsuba 3 refuses emitters and sensors in instanced shapes)",
-                    e.node.desc()
-                ),
-            );
-        }
-        members.push(n);
     }
     group.check_all_used()?;
     Ok(members)

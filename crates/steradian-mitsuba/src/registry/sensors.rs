@@ -9,7 +9,7 @@ use glam::{UVec2, Vec2};
 use steradian::emitter::horizontal_illuminance;
 use steradian::film::{
     BoxFilter, CatmullRomFilter, ComponentFormat, Film, FilmWindow, GaussianFilter, LanczosFilter,
-    MitchellFilter, PixelFormat, ReconstructionFilter, TentFilter,
+    MitchellFilter, PixelFormat, ReconstructionFilter, SampleBorder, TentFilter,
 };
 use steradian::geometry::Transform;
 use steradian::sampling::{Sampler, SamplerKind};
@@ -135,12 +135,10 @@ fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
     };
     // Kahan-compensated sums in Mitsuba's f32 film; steradian's sums are f64 anyway
     p.get_bool("compensate")?;
-    if p.get_bool("sample_border")? == Some(true) {
-        return Err(LoadError::at(
-            p.position("sample_border").unwrap(),
-            "hdrfilm: sample_border = true is not supported yet",
-        ));
-    }
+    let sample_border = match p.get_bool("sample_border")? {
+        Some(true) => SampleBorder::WithMargin,
+        Some(false) | None => SampleBorder::FilmOnly,
+    };
     // the crop window (Mitsuba's defaults: the whole film)
     let crop_int = |name: &str, default: u32, range: std::ops::RangeInclusive<u32>| {
         let v = p.get_int(name)?.unwrap_or(default as i64);
@@ -172,6 +170,7 @@ fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
         film = film.with_crop(UVec2::new(ox, oy), UVec2::new(width, height)).map_err(core_err)?;
     }
     film.component_format = component_format;
+    film.sample_border = sample_border;
     film.pixel_format = pixel_format;
     Ok(film)
 }
@@ -619,6 +618,9 @@ fn batch(
     let n = nested.len() as u32;
     if film.window() != FilmWindow::whole(film.width, film.height) {
         return Err(at(node)("a batch renders the whole film: crop_* is not supported".into()));
+    }
+    if film.sample_border == SampleBorder::WithMargin {
+        return Err(at(node)("a batch's film cannot sample_border (not supported)".into()));
     }
     if !film.width.is_multiple_of(n) {
         return Err(at(node)(format!(

@@ -9,7 +9,7 @@
 //! | `height`           | integer | 576          | image height in pixels (1 ..= 32768)             |
 //! | `pixel_format`     | string  | `"rgb"`      | `rgb`, `rgba`, `luminance`, `luminance_alpha`, `xyz`, `xyza`: the file's channels (`pixel_format.rs`) |
 //! | `component_format` | string  | `"float16"`  | `float16` or `float32`: precision of files the film writes itself; developed images are always f32 |
-//! | `sample_border`    | boolean | false        | also sample pixels just outside the film so that edge pixels get the same filter support as interior ones |
+//! | `sample_border`    | boolean | false        | also sample the pixels just outside the film (or crop window), [`SampleBorder`] |
 //! | `rfilter`          | filter  | `gaussian`   | reconstruction filter (σ = 0.5 px, radius 2 px)  |
 //!
 //! | `crop_offset_x`, `crop_offset_y` | integer | 0 | the rendered window's top-left pixel in the full film |
@@ -73,8 +73,8 @@ pub struct Film {
     pub filter: ReconstructionFilter,
     /// Precision for files written by the film itself (default float16).
     pub component_format: ComponentFormat,
-    /// Whether the sensor should also sample the border pixels outside the film (default false).
-    pub sample_border: bool,
+    /// Whether camera renders also sample a margin around the film (default: no).
+    pub sample_border: SampleBorder,
     /// The channels of the files the render writes (default RGB).
     pub pixel_format: PixelFormat,
     /// Where the film lies in the full frame the camera sees (a crop window), or the whole
@@ -95,6 +95,24 @@ pub struct Film {
 pub struct AovLayer {
     pub name: String,
     pub channels: Vec<&'static str>,
+}
+
+/// Which pixels a camera render samples (`sample_border`). Mitsuba 3 samples the film's
+/// pixels only by default, so that a pixel within the filter's reach of the edge gathers less
+/// weight than an inner one, from one side; with `sample_border` it also samples a margin of
+/// [`ReconstructionFilter::border_size`] pixels (⌈radius − ½⌉: 2 for the default gaussian, 0
+/// for `box`) around the film or its crop window, whose samples reach the edge pixels only, so
+/// that every pixel gathers its filter's whole support. The margin's samples are taken as a
+/// pixel's and splatted like them (an adaptive render gives them the nearest film pixel's
+/// count and weight), and they count in the samples reported. Meters and `ptracer` (whose
+/// light paths land wherever the camera sees them) ignore it, as Mitsuba's `ptracer` does.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum SampleBorder {
+    /// The film's pixels only (Mitsuba's default).
+    #[default]
+    FilmOnly,
+    /// The film's pixels and a margin of the filter's border size around them.
+    WithMargin,
 }
 
 /// Where a film's pixels lie in the full frame its camera sees: the whole frame, or a crop
@@ -154,6 +172,14 @@ impl AovLayer {
 }
 
 impl Film {
+    /// Pixels sampled beyond each edge of the film by camera renders ([`SampleBorder`]).
+    pub fn sample_margin(&self) -> u32 {
+        match self.sample_border {
+            SampleBorder::FilmOnly => 0,
+            SampleBorder::WithMargin => self.filter.border_size(),
+        }
+    }
+
     /// Whether the film keeps an alpha layer (its last, [`AovLayer::alpha`]).
     pub fn has_alpha_layer(&self) -> bool {
         self.aov_names.last() == Some(&AovLayer::alpha())
@@ -191,7 +217,7 @@ impl Film {
             height,
             filter,
             component_format: ComponentFormat::default(),
-            sample_border: false,
+            sample_border: SampleBorder::default(),
             pixel_format: PixelFormat::default(),
             window: FilmWindow::whole(width, height),
             data: vec![PixelAccum::default(); width as usize * height as usize],
@@ -467,7 +493,7 @@ mod tests {
         assert_eq!((d.width, d.height), (768, 576));
         assert!(matches!(d.filter, ReconstructionFilter::Gaussian(g) if g.stddev() == 0.5));
         assert_eq!(d.component_format, ComponentFormat::Float16);
-        assert!(!d.sample_border);
+        assert_eq!(d.sample_border, SampleBorder::FilmOnly);
         assert_eq!(ComponentFormat::parse("float32"), Ok(ComponentFormat::Float32));
         assert!(ComponentFormat::parse("uint8").is_err());
     }

@@ -23,7 +23,7 @@ pub use filter::{
     BoxFilter, CatmullRomFilter, GaussianFilter, LanczosFilter, MitchellFilter,
     ReconstructionFilter, TentFilter,
 };
-pub use hdrfilm::{AovLayer, ComponentFormat, Film, FilmWindow, MAX_FILM_SIZE};
+pub use hdrfilm::{AovLayer, ComponentFormat, Film, FilmWindow, SampleBorder, MAX_FILM_SIZE};
 pub use image::{mse, rel_mse, Image};
 pub use image_block::{ImageBlock, PixelAccum};
 pub use isolux::isolux_png;

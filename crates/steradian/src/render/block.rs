@@ -2,7 +2,7 @@
 //! estimated by the integrator and splatted through the film's reconstruction filter.
 //! Samples whose value is NaN or infinite are dropped and counted, never splatted.
 
-use glam::{UVec2, Vec2};
+use glam::{IVec2, UVec2, Vec2};
 
 use super::densities::Densities;
 use super::options::Plan;
@@ -12,7 +12,7 @@ use crate::film::{FilmWindow, ImageBlock, ReconstructionFilter};
 use crate::integrator::{camera_ray_alpha, estimate_irradiance, AlphaRule, Integrator};
 use crate::sampling::{mix64, PixelSampler, Sampler, SamplerKind};
 use crate::scene::{rays_traced_on_this_thread, Scene};
-use crate::sensor::{film_position, Sensor, SensorKind};
+use crate::sensor::{film_position, film_position_signed, Sensor, SensorKind};
 use crate::Spectrum;
 
 /// Renders work items of one plan; shared by all worker threads.
@@ -31,6 +31,8 @@ pub(super) struct BlockRenderer<'a> {
     pub height: u32,
     /// Where the film lies in the camera's frame (a crop window, or all of it).
     pub window: FilmWindow,
+    /// Pixels sampled beyond each edge of the film (`film::SampleBorder`; 0 for meters).
+    pub margin: u32,
     /// AOV layers of the film (`moment`'s, the alpha channel's), 0 for most renders.
     pub aov_layers: usize,
     /// How camera samples fill the alpha channel, the last AOV layer (`rgba` films).
@@ -68,6 +70,7 @@ impl<'a> BlockRenderer<'a> {
             width: plan.film.width,
             height: plan.film.height,
             window: plan.film.window(),
+            margin: if plan.meter { 0 } else { plan.film.sample_margin() },
             aov_layers: plan.film.aov_layers().len(),
             alpha: if plan.film.has_alpha_layer() { integrator.alpha_rule() } else { None },
             densities: None,
@@ -129,24 +132,46 @@ impl<'a> BlockRenderer<'a> {
         let (mut dropped, mut samples) = (0u64, 0u64);
         // the block is rendered on this one thread
         let rays_before = rays_traced_on_this_thread();
-        for y in offset.y..offset.y + size.y {
+        // tiles on the film's edges also take the margin beyond it (`sample_border`)
+        let m = self.margin as i32;
+        let span = |o: u32, n: u32, full: u32| {
+            let (lo, hi) = (o as i32, (o + n) as i32);
+            (if o == 0 { lo - m } else { lo }, if o + n == full { hi + m } else { hi })
+        };
+        let ((x0, x1), (y0, y1)) = (span(offset.x, size.x, width), span(offset.y, size.y, height));
+        let film = IVec2::new(width as i32, height as i32);
+        for y in y0..y1 {
             if cancelled() {
                 return None;
             }
-            for x in offset.x..offset.x + size.x {
-                let pixel = UVec2::new(x, y);
+            for x in x0..x1 {
+                let signed = IVec2::new(x, y);
+                // a margin pixel samples as its nearest film pixel does
+                let pixel = signed.clamp(IVec2::ZERO, film - 1).as_uvec2();
+                let inside = signed == pixel.as_ivec2();
                 // this pixel's samples of the item, and their weight
                 let (first, end, scale) = match self.densities {
                     None => (s0, s1, 1.0),
                     Some(d) => {
-                        let i = y as usize * width as usize + x as usize;
+                        let i = pixel.y as usize * width as usize + pixel.x as usize;
                         (d.count(i, s0), d.count(i, s1), d.weight(i))
                     }
                 };
                 samples += (end - first) as u64;
                 for index in first..end {
-                    let mut s = self.sampler.pixel_sampler(pixel, width, index);
-                    let (mut pos, film_uv) = film_position(pixel, &mut s, &self.window);
+                    let (mut s, (mut pos, film_uv)) = if inside {
+                        let mut s = self.sampler.pixel_sampler(pixel, width, index);
+                        let at = film_position(pixel, &mut s, &self.window);
+                        (s, at)
+                    } else {
+                        // numbered after the film's pixels, row by row over film and margin
+                        let row = (width + 2 * self.margin) as u64;
+                        let id =
+                            width as u64 * height as u64 + (y + m) as u64 * row + (x + m) as u64;
+                        let mut s = self.sampler.pixel_sampler_of(id, index);
+                        let at = film_position_signed(signed, &mut s, &self.window);
+                        (s, at)
+                    };
                     let l = match self.batch {
                         1 => estimate(&mut s, film_uv, aovs),
                         n => self.replicate(pixel, index, n, &mut estimate, aovs),

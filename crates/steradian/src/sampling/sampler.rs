@@ -59,7 +59,15 @@ impl Sampler {
     /// The stream of numbers for sample `index` of `pixel` (an image of `width` pixels per row).
     #[inline]
     pub fn pixel_sampler(&self, pixel: UVec2, width: u32, index: u32) -> PixelSampler {
-        let pixel_id = pixel.y as u64 * width as u64 + pixel.x as u64;
+        self.pixel_sampler_of(pixel.y as u64 * width as u64 + pixel.x as u64, index)
+    }
+
+    /// The numbers of sample `index` of the pixel numbered `pixel_id` ([`pixel_sampler`]
+    /// numbers a film's pixels row by row; the margin a render samples around the film takes
+    /// the numbers after the film's, `film::SampleBorder`).
+    ///
+    /// [`pixel_sampler`]: Self::pixel_sampler
+    pub fn pixel_sampler_of(&self, pixel_id: u64, index: u32) -> PixelSampler {
         let stream = mix64(pixel_id ^ mix64(self.seed.wrapping_add(0x9e37_79b9_7f4a_7c15)));
         let rng = Pcg32::new(mix64((index as u64) ^ (stream << 1)), stream);
         let pixel_seed = stream as u32 ^ (stream >> 32) as u32;

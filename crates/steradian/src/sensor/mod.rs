@@ -21,7 +21,7 @@ pub use radiancemeter::RadianceMeter;
 pub use thinlens::ThinLens;
 pub use workplane::{Workplane, WorkplaneMode, WorkplaneUnit};
 
-use glam::{UVec2, Vec2};
+use glam::{IVec2, UVec2, Vec2};
 
 use crate::film::{Film, FilmWindow};
 use crate::geometry::{Aabb, Ray};
@@ -179,6 +179,17 @@ impl SensorKind {
 /// unless cropped). The render and the branch-count pilot start every sample here.
 #[inline]
 pub fn film_position(pixel: UVec2, s: &mut PixelSampler, window: &FilmWindow) -> (Vec2, Vec2) {
+    film_position_signed(pixel.as_ivec2(), s, window)
+}
+
+/// [`film_position`] for a pixel that may lie outside the film: the margin sampled around it
+/// with `sample_border` (`film::SampleBorder`).
+#[inline]
+pub fn film_position_signed(
+    pixel: IVec2,
+    s: &mut PixelSampler,
+    window: &FilmWindow,
+) -> (Vec2, Vec2) {
     let pos = pixel.as_vec2() + s.next_2d();
     (pos, window.frame_uv(pos))
 }

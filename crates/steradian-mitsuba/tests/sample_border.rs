@@ -83,8 +83,9 @@ fn a_batch_refuses_it() {
                <sensor type=\"perspective\"/><sensor type=\"perspective\"/>\n\
                <film type=\"hdrfilm\"><boolean name=\"sample_border\" value=\"true\"/></film>\n\
                </sensor>\n</scene>";
-    let e = steradian_mitsuba::load_string(xml, std::path::Path::new("b.xml"), &data(""), &[])
-        .err()
-        .expect("a batch with sample_border was accepted");
+    let Err(e) = steradian_mitsuba::load_string(xml, std::path::Path::new("b.xml"), &data(""), &[])
+    else {
+        panic!("a batch with sample_border was accepted");
+    };
     assert!(e.message.contains("sample_border"), "{e}");
 }

@@ -1,5 +1,5 @@
 //! Shape plugins' geometry: `obj`, `ply`, `serialized`, `rectangle`, `disk`, `cube`, `sphere`,
-//! `cylinder`, each built from its node with its `to_world` and `flip_normals`. What a shape
+//! `cylinder`, `linearcurve`, each built from its node with its `to_world` and `flip_normals`. What a shape
 //! carries besides (BSDF, area emitter, sensor) and how groups place it is `shapes`' business;
 //! the geometry sits apart so that a sensor (a `distant` sensor's `target`) can build a shape
 //! without importing the module that nests sensors in shapes.
@@ -9,8 +9,8 @@ use std::sync::Arc;
 
 use steradian::geometry::Transform;
 use steradian::shape::{
-    self, read_obj, read_ply_with_attributes, Cylinder, Disk, Mesh, MeshData, Rectangle, Shape,
-    ShapeError, Sphere, DEFAULT_FLIP_TEX_COORDS,
+    self, read_curves, read_obj, read_ply_with_attributes, Cylinder, Disk, LinearCurve, Mesh,
+    MeshData, Rectangle, Shape, ShapeError, Sphere, DEFAULT_FLIP_TEX_COORDS,
 };
 
 use super::{lookup, AttributeSource, Builder, MeshAttributes, Plugins};
@@ -39,6 +39,7 @@ pub(super) const SHAPES: &Plugins<BuildShape> = &[
     ("cube", cube),
     ("sphere", sphere),
     ("cylinder", cylinder),
+    ("linearcurve", linearcurve),
     ("shapegroup", group_placeholder),
     ("instance", group_placeholder),
     ("merge", group_placeholder),
@@ -111,6 +112,20 @@ fn ply(s: &ShapeArgs) -> Result<Shape, LoadError> {
     let shape = mesh(s, Ok(data), face_normals)?;
     s.b.mesh_attributes.replace(AttributeSource::Mesh(attributes));
     Ok(shape)
+}
+
+/// `linearcurve` (core: shape/linearcurve.rs). Mitsuba's curves read no `flip_normals`.
+fn linearcurve(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    if let Some(pos) = s.node.props.position("flip_normals") {
+        return Err(LoadError::at(
+            pos,
+            format!("{}: curves have no 'flip_normals' (Mitsuba 3 refuses it)", s.node.desc()),
+        ));
+    }
+    let path = mesh_file(s)?;
+    let curves = read_curves(&path).map_err(mesh_err(s.node))?;
+    let curve = LinearCurve::new(&curves, &s.to_world).map_err(shape_err(s.node))?;
+    Ok(Shape::LinearCurve(curve))
 }
 
 fn rectangle(s: &ShapeArgs) -> Result<Shape, LoadError> {

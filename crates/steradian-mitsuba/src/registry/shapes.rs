@@ -214,6 +214,20 @@ fn build_shape_node(
             format!("{} has more than one emitter", node.desc()),
         ));
     }
+    // Mitsuba samples no points on curves: they can neither emit nor carry a sensor
+    if let (Shape::LinearCurve(_), Some(c)) = (
+        &shape,
+        node.children.iter().find(|c| matches!(c.node.tag, ObjectTag::Emitter | ObjectTag::Sensor)),
+    ) {
+        return Err(LoadError::at(
+            c.pos(),
+            format!(
+                "{}: {} on a curve is not supported (points on curves cannot be sampled)",
+                node.desc(),
+                c.node.desc()
+            ),
+        ));
+    }
     let shape_index = b.desc.shapes.len() as u32;
     // (the emitter's index, whether the shape carries one: `directionalarea` adds none)
     let (emitter, emitting) = match emitter_nodes.first() {

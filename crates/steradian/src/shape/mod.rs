@@ -1,7 +1,7 @@
 //! Shapes: the surfaces light interacts with.
 //!
 //! One file per Mitsuba 3 shape plugin (`obj`, `ply`, `serialized`, `cube`, `rectangle`,
-//! `disk`, `sphere`, `cylinder`). [`Shape`] is a closed enum: every method is one `match`, no
+//! `disk`, `sphere`, `cylinder`, `linearcurve`; `curves.rs` reads curve files). [`Shape`] is a closed enum: every method is one `match`, no
 //! dynamic dispatch.
 //!
 //! Conventions used by every shape:
@@ -20,8 +20,10 @@ pub(crate) use crate::geometry::{is_positive, is_positive_finite};
 use crate::geometry::{Aabb, PreliminaryHit, Ray, SurfaceInteraction, SurfacePoint};
 
 mod cube;
+mod curves;
 mod cylinder;
 mod disk;
+mod linearcurve;
 mod mesh;
 mod obj;
 mod ply;
@@ -30,8 +32,10 @@ pub mod serialized;
 mod sphere;
 
 pub use cube::cube;
+pub use curves::{parse_curves, read_curves};
 pub use cylinder::Cylinder;
 pub use disk::Disk;
+pub use linearcurve::LinearCurve;
 pub use mesh::{Mesh, MeshData};
 pub use obj::{read_obj, DEFAULT_FLIP_TEX_COORDS};
 pub use ply::{read_ply, read_ply_with_attributes};
@@ -50,6 +54,7 @@ pub enum Shape {
     Disk(Disk),
     Sphere(Sphere),
     Cylinder(Cylinder),
+    LinearCurve(LinearCurve),
 }
 
 /// A point sampled on a surface, uniformly by area.
@@ -114,15 +119,17 @@ impl Shape {
             Shape::Disk(s) => s.bounds(),
             Shape::Sphere(s) => s.bounds(),
             Shape::Cylinder(s) => s.bounds(),
+            Shape::LinearCurve(s) => s.bounds(),
         }
     }
 
-    /// Number of primitives: triangles for meshes and rectangles (2), 1 for other analytic
-    /// shapes.
+    /// Number of primitives: triangles for meshes and rectangles (2), segments for curves, 1
+    /// for other analytic shapes.
     pub fn prim_count(&self) -> u32 {
         match self {
             Shape::Mesh(s) => s.indices.len() as u32,
             Shape::Rectangle(_) => 2,
+            Shape::LinearCurve(s) => s.segment_count(),
             _ => 1,
         }
     }
@@ -138,6 +145,7 @@ impl Shape {
                 bb.grow(c);
                 bb
             }
+            Shape::LinearCurve(s) => s.prim_bounds(prim),
             _ => self.bounds(),
         }
     }
@@ -149,7 +157,7 @@ impl Shape {
         match self {
             Shape::Mesh(s) => Some(s.triangle(prim)),
             Shape::Rectangle(s) => Some(s.triangle(prim)),
-            Shape::Disk(_) | Shape::Sphere(_) | Shape::Cylinder(_) => None,
+            Shape::Disk(_) | Shape::Sphere(_) | Shape::Cylinder(_) | Shape::LinearCurve(_) => None,
         }
     }
 
@@ -164,6 +172,7 @@ impl Shape {
             Shape::Disk(s) => s.intersect(ray),
             Shape::Sphere(s) => s.intersect(ray),
             Shape::Cylinder(s) => s.intersect(ray),
+            Shape::LinearCurve(s) => s.intersect_prim(prim, ray),
         }
     }
 
@@ -177,6 +186,7 @@ impl Shape {
             Shape::Disk(s) => s.interaction(ray, hit),
             Shape::Sphere(s) => s.interaction(ray, hit),
             Shape::Cylinder(s) => s.interaction(ray, hit),
+            Shape::LinearCurve(s) => s.interaction(ray, hit),
         }
     }
 
@@ -185,7 +195,11 @@ impl Shape {
     pub fn prepare_sampling(&self) {
         match self {
             Shape::Mesh(m) => m.prepare_sampling(),
-            Shape::Rectangle(_) | Shape::Disk(_) | Shape::Sphere(_) | Shape::Cylinder(_) => {}
+            Shape::Rectangle(_)
+            | Shape::Disk(_)
+            | Shape::Sphere(_)
+            | Shape::Cylinder(_)
+            | Shape::LinearCurve(_) => {}
         }
     }
 
@@ -197,10 +211,12 @@ impl Shape {
             Shape::Disk(s) => s.surface_area(),
             Shape::Sphere(s) => s.surface_area(),
             Shape::Cylinder(s) => s.surface_area(),
+            Shape::LinearCurve(s) => s.surface_area(),
         }
     }
 
-    /// A point uniformly distributed by area; `pdf_area = 1 / area`.
+    /// A point uniformly distributed by area; `pdf_area = 1 / area` (0 for curves, which
+    /// cannot be sampled: no caller takes such a sample).
     pub fn sample_position(&self, u: Vec2) -> PositionSample {
         match self {
             Shape::Mesh(s) => s.sample_position(u),
@@ -208,6 +224,7 @@ impl Shape {
             Shape::Disk(s) => s.sample_position(u),
             Shape::Sphere(s) => s.sample_position(u),
             Shape::Cylinder(s) => s.sample_position(u),
+            Shape::LinearCurve(s) => s.sample_position(u),
         }
     }
 
@@ -224,7 +241,7 @@ impl Shape {
             Shape::Sphere(s) => s.sample_direction(reference, u, uv),
             Shape::Rectangle(s) => s.sample_direction(reference, u),
             Shape::Mesh(s) => s.sample_direction(reference, u),
-            Shape::Disk(_) | Shape::Cylinder(_) => {
+            Shape::Disk(_) | Shape::Cylinder(_) | Shape::LinearCurve(_) => {
                 direction_from_position(reference, &self.sample_position(u), 0)
             }
         }
@@ -240,7 +257,7 @@ impl Shape {
         match self {
             Shape::Sphere(s) => s.light_sampling_bounded(reference),
             Shape::Rectangle(s) => s.light_sampling_bounded(reference),
-            Shape::Mesh(_) | Shape::Disk(_) | Shape::Cylinder(_) => false,
+            Shape::Mesh(_) | Shape::Disk(_) | Shape::Cylinder(_) | Shape::LinearCurve(_) => false,
         }
     }
 
@@ -252,6 +269,7 @@ impl Shape {
             Shape::Sphere(s) => s.pdf_direction(reference, p, n),
             Shape::Rectangle(s) => s.pdf_direction(reference, p, n),
             Shape::Mesh(s) => s.pdf_direction(reference, p, n, q.prim),
+            Shape::LinearCurve(_) => 0.0,
             Shape::Disk(_) | Shape::Cylinder(_) => {
                 let area = self.surface_area();
                 if area > 0.0 {

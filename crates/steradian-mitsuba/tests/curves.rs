@@ -1,8 +1,10 @@
 //! Purpose: `linearcurve` renders `reference/curves.xml` (a thin textured helix, a tapered
-//! zigzag with spherical joints, a straight bar) as Mitsuba 3.9.1 renders it (its Z-test rule,
-//! a 4096-spp `llvm_ad_rgb` reference); the checkerboard's uv along and around the tube
-//! matters (its scales swapped, the test fails); what Mitsuba refuses on curves (emitters,
-//! `flip_normals`) and bad curve files are located errors.
+//! zigzag with spherical joints, a straight bar) and `bsplinecurve` renders
+//! `reference/bspline-curves.xml` (tapering textured strands, a thick arch with an open end) as
+//! Mitsuba 3.9.1 renders them (its Z-test rule, 4096-spp `llvm_ad_rgb` references); the
+//! checkerboard's uv along and around the tube matters (its scales swapped, the tests fail);
+//! what Mitsuba refuses on curves (emitters, `flip_normals`) and bad curve files are located
+//! errors.
 
 mod common;
 
@@ -22,6 +24,21 @@ fn curves_match_mitsuba() {
     assert_eq!(stats.analytic_prims, 40 + 4 + 1 + 1, "{stats:?}");
     let z = z_test_against(&job, SPP, "curves", "curves");
     assert!(z.passes(), "{:.4} of the pixels pass", z.pass_fraction());
+}
+
+#[test]
+fn bspline_curves_match_mitsuba() {
+    let job = steradian_mitsuba::load_file(&data("bspline-curves.xml"), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    let z = z_test_against(&job, SPP, "bspline-curves", "bspline curves");
+    assert!(z.passes(), "{:.4} of the pixels pass", z.pass_fraction());
+    let job = reference_scene_with(
+        "bspline-curves.xml",
+        "<scale x=\"2\" y=\"50\"/>",
+        "<scale x=\"50\" y=\"2\"/>",
+    );
+    let z = z_test_against(&job, SPP, "bspline-curves", "bspline curves, uv scales swapped");
+    assert!(!z.passes(), "{:.4} of the pixels pass", z.pass_fraction());
 }
 
 /// The texture's scales swapped (u around the tube, v along the curve): the helix's pattern

@@ -67,7 +67,7 @@ fn unknown_bsdf_type() {
 fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
     for (tag, ty) in [
         ("shape", "ellipsoids"),
-        ("shape", "bsplinecurve"),
+        ("shape", "sdfgrid"),
         ("texture", "volume"),
         ("bsdf", "hair"),
         ("bsdf", "polarizer"),

@@ -1,5 +1,5 @@
 //! Shape plugins' geometry: `obj`, `ply`, `serialized`, `rectangle`, `disk`, `cube`, `sphere`,
-//! `cylinder`, `linearcurve`, each built from its node with its `to_world` and `flip_normals`. What a shape
+//! `cylinder`, `linearcurve`, `bsplinecurve`, each built from its node with its `to_world` and `flip_normals`. What a shape
 //! carries besides (BSDF, area emitter, sensor) and how groups place it is `shapes`' business;
 //! the geometry sits apart so that a sensor (a `distant` sensor's `target`) can build a shape
 //! without importing the module that nests sensors in shapes.
@@ -9,8 +9,8 @@ use std::sync::Arc;
 
 use steradian::geometry::Transform;
 use steradian::shape::{
-    self, read_curves, read_obj, read_ply_with_attributes, Cylinder, Disk, LinearCurve, Mesh,
-    MeshData, Rectangle, Shape, ShapeError, Sphere, DEFAULT_FLIP_TEX_COORDS,
+    self, read_curves, read_obj, read_ply_with_attributes, BSplineCurve, Cylinder, Disk,
+    LinearCurve, Mesh, MeshData, Rectangle, Shape, ShapeError, Sphere, DEFAULT_FLIP_TEX_COORDS,
 };
 
 use super::{lookup, AttributeSource, Builder, MeshAttributes, Plugins};
@@ -40,6 +40,7 @@ pub(super) const SHAPES: &Plugins<BuildShape> = &[
     ("sphere", sphere),
     ("cylinder", cylinder),
     ("linearcurve", linearcurve),
+    ("bsplinecurve", bsplinecurve),
     ("shapegroup", group_placeholder),
     ("instance", group_placeholder),
     ("merge", group_placeholder),
@@ -114,8 +115,23 @@ fn ply(s: &ShapeArgs) -> Result<Shape, LoadError> {
     Ok(shape)
 }
 
-/// `linearcurve` (core: shape/linearcurve.rs). Mitsuba's curves read no `flip_normals`.
+/// `linearcurve` (core: shape/linearcurve.rs).
 fn linearcurve(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let curves = curve_file(s)?;
+    let curve = LinearCurve::new(&curves, &s.to_world).map_err(shape_err(s.node))?;
+    Ok(Shape::LinearCurve(curve))
+}
+
+/// `bsplinecurve` (core: shape/bsplinecurve.rs).
+fn bsplinecurve(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let curves = curve_file(s)?;
+    let curve = BSplineCurve::new(&curves, &s.to_world).map_err(shape_err(s.node))?;
+    Ok(Shape::BSplineCurve(curve))
+}
+
+/// A curve shape's control points from its `filename`; Mitsuba's curves read no
+/// `flip_normals`.
+fn curve_file(s: &ShapeArgs) -> Result<Vec<Vec<glam::Vec4>>, LoadError> {
     if let Some(pos) = s.node.props.position("flip_normals") {
         return Err(LoadError::at(
             pos,
@@ -123,9 +139,7 @@ fn linearcurve(s: &ShapeArgs) -> Result<Shape, LoadError> {
         ));
     }
     let path = mesh_file(s)?;
-    let curves = read_curves(&path).map_err(mesh_err(s.node))?;
-    let curve = LinearCurve::new(&curves, &s.to_world).map_err(shape_err(s.node))?;
-    Ok(Shape::LinearCurve(curve))
+    read_curves(&path).map_err(mesh_err(s.node))
 }
 
 fn rectangle(s: &ShapeArgs) -> Result<Shape, LoadError> {

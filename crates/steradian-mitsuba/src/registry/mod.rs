@@ -231,7 +231,7 @@ pub(crate) type Plugins<F> = [(&'static str, F)];
 pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("bsdf", &["hair", "measured", "measured_polarized", "polarizer", "retarder"]),
     ("emitter", &["sunsky", "timed_sunsky"]),
-    ("shape", &["bsplinecurve", "sdfgrid", "ellipsoids", "ellipsoidsmesh"]),
+    ("shape", &["sdfgrid", "ellipsoids", "ellipsoidsmesh"]),
     ("film", &["specfilm"]),
     ("texture", &["volume"]),
     ("phase", &["sggx", "tabphase"]),

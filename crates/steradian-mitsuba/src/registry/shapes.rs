@@ -215,7 +215,7 @@ fn build_shape_node(
         ));
     }
     // Mitsuba samples no points on curves: they can neither emit nor carry a sensor
-    if let (Shape::LinearCurve(_), Some(c)) = (
+    if let (Shape::LinearCurve(_) | Shape::BSplineCurve(_), Some(c)) = (
         &shape,
         node.children.iter().find(|c| matches!(c.node.tag, ObjectTag::Emitter | ObjectTag::Sensor)),
     ) {

@@ -177,7 +177,7 @@ impl LinearCurve {
 
 /// Mitsuba's frame about a segment's axis: the rotation axis is +z projected off the segment
 /// (+y where the segment is parallel to z), the radial axis their cross product.
-fn local_frame(axis: Vec3) -> (Vec3, Vec3) {
+pub(super) fn local_frame(axis: Vec3) -> (Vec3, Vec3) {
     let guide = Vec3::Z;
     let v_rot = if guide.dot(axis).abs() == 1.0 {
         Vec3::Y
@@ -192,7 +192,7 @@ fn local_frame(axis: Vec3) -> (Vec3, Vec3) {
 /// on the caps). The cone touching both spheres is parametrised by
 /// y = (h − p0)·(p1 − p0) + r0·(r1 − r0) over h on it: y = 0 where it touches the first sphere,
 /// y = g = |p1 − p0|² − (r1 − r0)² where it touches the second, and v = y / g.
-fn intersect_round_segment(
+pub(super) fn intersect_round_segment(
     p0: DVec3,
     r0: f64,
     p1: DVec3,

@@ -1,7 +1,7 @@
 //! Shapes: the surfaces light interacts with.
 //!
 //! One file per Mitsuba 3 shape plugin (`obj`, `ply`, `serialized`, `cube`, `rectangle`,
-//! `disk`, `sphere`, `cylinder`, `linearcurve`; `curves.rs` reads curve files). [`Shape`] is a closed enum: every method is one `match`, no
+//! `disk`, `sphere`, `cylinder`, `linearcurve`, `bsplinecurve`; `curves.rs` reads curve files). [`Shape`] is a closed enum: every method is one `match`, no
 //! dynamic dispatch.
 //!
 //! Conventions used by every shape:
@@ -19,6 +19,7 @@ use glam::{Vec2, Vec3};
 pub(crate) use crate::geometry::{is_positive, is_positive_finite};
 use crate::geometry::{Aabb, PreliminaryHit, Ray, SurfaceInteraction, SurfacePoint};
 
+mod bsplinecurve;
 mod cube;
 mod curves;
 mod cylinder;
@@ -31,6 +32,7 @@ mod rectangle;
 pub mod serialized;
 mod sphere;
 
+pub use bsplinecurve::BSplineCurve;
 pub use cube::cube;
 pub use curves::{parse_curves, read_curves};
 pub use cylinder::Cylinder;
@@ -55,6 +57,7 @@ pub enum Shape {
     Sphere(Sphere),
     Cylinder(Cylinder),
     LinearCurve(LinearCurve),
+    BSplineCurve(BSplineCurve),
 }
 
 /// A point sampled on a surface, uniformly by area.
@@ -120,16 +123,18 @@ impl Shape {
             Shape::Sphere(s) => s.bounds(),
             Shape::Cylinder(s) => s.bounds(),
             Shape::LinearCurve(s) => s.bounds(),
+            Shape::BSplineCurve(s) => s.bounds(),
         }
     }
 
-    /// Number of primitives: triangles for meshes and rectangles (2), segments for curves, 1
-    /// for other analytic shapes.
+    /// Number of primitives: triangles for meshes and rectangles (2), segments of linear
+    /// curves, pieces of B-spline curves, 1 for other analytic shapes.
     pub fn prim_count(&self) -> u32 {
         match self {
             Shape::Mesh(s) => s.indices.len() as u32,
             Shape::Rectangle(_) => 2,
             Shape::LinearCurve(s) => s.segment_count(),
+            Shape::BSplineCurve(s) => s.piece_count_total(),
             _ => 1,
         }
     }
@@ -146,6 +151,7 @@ impl Shape {
                 bb
             }
             Shape::LinearCurve(s) => s.prim_bounds(prim),
+            Shape::BSplineCurve(s) => s.prim_bounds(prim),
             _ => self.bounds(),
         }
     }
@@ -157,7 +163,11 @@ impl Shape {
         match self {
             Shape::Mesh(s) => Some(s.triangle(prim)),
             Shape::Rectangle(s) => Some(s.triangle(prim)),
-            Shape::Disk(_) | Shape::Sphere(_) | Shape::Cylinder(_) | Shape::LinearCurve(_) => None,
+            Shape::Disk(_)
+            | Shape::Sphere(_)
+            | Shape::Cylinder(_)
+            | Shape::LinearCurve(_)
+            | Shape::BSplineCurve(_) => None,
         }
     }
 
@@ -173,6 +183,7 @@ impl Shape {
             Shape::Sphere(s) => s.intersect(ray),
             Shape::Cylinder(s) => s.intersect(ray),
             Shape::LinearCurve(s) => s.intersect_prim(prim, ray),
+            Shape::BSplineCurve(s) => s.intersect_prim(prim, ray),
         }
     }
 
@@ -187,6 +198,7 @@ impl Shape {
             Shape::Sphere(s) => s.interaction(ray, hit),
             Shape::Cylinder(s) => s.interaction(ray, hit),
             Shape::LinearCurve(s) => s.interaction(ray, hit),
+            Shape::BSplineCurve(s) => s.interaction(ray, hit),
         }
     }
 
@@ -199,7 +211,8 @@ impl Shape {
             | Shape::Disk(_)
             | Shape::Sphere(_)
             | Shape::Cylinder(_)
-            | Shape::LinearCurve(_) => {}
+            | Shape::LinearCurve(_)
+            | Shape::BSplineCurve(_) => {}
         }
     }
 
@@ -212,6 +225,7 @@ impl Shape {
             Shape::Sphere(s) => s.surface_area(),
             Shape::Cylinder(s) => s.surface_area(),
             Shape::LinearCurve(s) => s.surface_area(),
+            Shape::BSplineCurve(s) => s.surface_area(),
         }
     }
 
@@ -225,6 +239,7 @@ impl Shape {
             Shape::Sphere(s) => s.sample_position(u),
             Shape::Cylinder(s) => s.sample_position(u),
             Shape::LinearCurve(s) => s.sample_position(u),
+            Shape::BSplineCurve(s) => s.sample_position(u),
         }
     }
 
@@ -241,7 +256,10 @@ impl Shape {
             Shape::Sphere(s) => s.sample_direction(reference, u, uv),
             Shape::Rectangle(s) => s.sample_direction(reference, u),
             Shape::Mesh(s) => s.sample_direction(reference, u),
-            Shape::Disk(_) | Shape::Cylinder(_) | Shape::LinearCurve(_) => {
+            Shape::Disk(_)
+            | Shape::Cylinder(_)
+            | Shape::LinearCurve(_)
+            | Shape::BSplineCurve(_) => {
                 direction_from_position(reference, &self.sample_position(u), 0)
             }
         }
@@ -257,7 +275,11 @@ impl Shape {
         match self {
             Shape::Sphere(s) => s.light_sampling_bounded(reference),
             Shape::Rectangle(s) => s.light_sampling_bounded(reference),
-            Shape::Mesh(_) | Shape::Disk(_) | Shape::Cylinder(_) | Shape::LinearCurve(_) => false,
+            Shape::Mesh(_)
+            | Shape::Disk(_)
+            | Shape::Cylinder(_)
+            | Shape::LinearCurve(_)
+            | Shape::BSplineCurve(_) => false,
         }
     }
 
@@ -269,7 +291,7 @@ impl Shape {
             Shape::Sphere(s) => s.pdf_direction(reference, p, n),
             Shape::Rectangle(s) => s.pdf_direction(reference, p, n),
             Shape::Mesh(s) => s.pdf_direction(reference, p, n, q.prim),
-            Shape::LinearCurve(_) => 0.0,
+            Shape::LinearCurve(_) | Shape::BSplineCurve(_) => 0.0,
             Shape::Disk(_) | Shape::Cylinder(_) => {
                 let area = self.surface_area();
                 if area > 0.0 {

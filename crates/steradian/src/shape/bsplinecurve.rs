@@ -43,7 +43,7 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3, Vec4, Vec4Swizzles};
 
-use super::linearcurve::{intersect_round_segment, local_frame};
+use super::linearcurve::{intersect_round_segment, local_frame, Caps};
 use super::{PositionSample, ShapeError};
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
 
@@ -224,6 +224,7 @@ impl BSplineCurve {
             piece.a.w as f64,
             piece.b.xyz().as_dvec3(),
             piece.b.w as f64,
+            Caps::BOTH,
             ray.o.as_dvec3(),
             ray.d.as_dvec3(),
         )?;

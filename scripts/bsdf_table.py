@@ -41,6 +41,15 @@ CONFIGS = {
          "diffuse_transmittance_sampling_rate": 0.3,
          "diffuse_reflectance_sampling_rate": 0.8},
     ],
+    # in the hair frame y runs along the fibre and z is the normal
+    "hair": [
+        {},
+        {"eumelanin": 0.2, "pheomelanin": 0.4},
+        {"sigma_a": [0.2, 0.25, 0.7], "scale": 2.0, "longitudinal_roughness": 0.15,
+         "azimuthal_roughness": 0.6},
+        {"eumelanin": 0.05, "pheomelanin": 0.05, "scale_tilt": 6.0, "int_ior": 1.4,
+         "longitudinal_roughness": 0.5, "azimuthal_roughness": 0.2},
+    ],
 }
 
 

@@ -69,7 +69,7 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
         ("shape", "ellipsoids"),
         ("shape", "sdfgrid"),
         ("texture", "volume"),
-        ("bsdf", "hair"),
+        ("bsdf", "measured"),
         ("bsdf", "polarizer"),
         ("emitter", "sunsky"),
         ("emitter", "timed_sunsky"),

@@ -1,6 +1,6 @@
 //! BSDF plugins: `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`,
 //! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `mask`, `blendbsdf`,
-//! `bumpmap`, `normalmap`, `null`, `pplastic`, `principled`, `principledthin`, and steradian's
+//! `bumpmap`, `normalmap`, `null`, `pplastic`, `principled`, `principledthin`, `hair`, and steradian's
 //! own `phong` and `merl`. Parameters and defaults are Mitsuba 3's (see each plugin's
 //! documentation in `steradian::bsdf`). Reflectances and transmittances (`phong`'s too),
 //! `mask`'s `opacity`, `blendbsdf`'s `weight` and the principled materials' parameters take a
@@ -8,10 +8,11 @@
 
 use steradian::bsdf::ior::{conductor_preset, lookup_ior};
 use steradian::bsdf::{
-    BlendBsdf, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, InternalScattering, Mask,
-    MicrofacetDistribution, MicrofacetKind, NormalMap, PPlastic, PerturbOptions, Plastic,
-    Principled, PrincipledSamplingRates, PrincipledThin, PrincipledThinSamplingRates,
-    RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric, TwoSided,
+    BlendBsdf, Bsdf, BumpMap, Conductor, Dielectric, Diffuse, Hair, HairAbsorption,
+    InternalScattering, Mask, MicrofacetDistribution, MicrofacetKind, NormalMap, PPlastic,
+    PerturbOptions, Plastic, Principled, PrincipledSamplingRates, PrincipledThin,
+    PrincipledThinSamplingRates, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric,
+    TwoSided,
 };
 use steradian::bsdf::{Merl, MerlTable, Phong};
 use steradian::texture::Texture;
@@ -201,6 +202,7 @@ pub(super) const BSDFS: &Plugins<BuildBsdf> = &[
     ("pplastic", pplastic),
     ("principled", principled),
     ("principledthin", principledthin),
+    ("hair", hair),
 ];
 
 /// Builds a BSDF node (not cached: use `Builder::bsdf_index` for scene BSDFs).
@@ -492,6 +494,45 @@ fn phong(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
         albedo_param(b, node, "specular_reflectance", Some(Phong::DEFAULT_SPECULAR_REFLECTANCE))?;
     let exponent = node.props.get_float("exponent")?.unwrap_or(Phong::DEFAULT_EXPONENT);
     Phong::new(diffuse, specular, exponent).map(Bsdf::Phong).map_err(at_param(node))
+}
+
+/// `hair` (core: bsdf/hair.rs): pigments or `sigma_a` (with `scale`), not both.
+fn hair(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let p = &node.props;
+    let float = |name: &str, default: f32| -> Result<f32, LoadError> {
+        Ok(p.get_float(name)?.unwrap_or(default))
+    };
+    let sigma_given = p.contains("sigma_a") || node.child("sigma_a").is_some();
+    let absorption = if sigma_given {
+        if let Some(name) = ["eumelanin", "pheomelanin"].into_iter().find(|n| p.contains(n)) {
+            return Err(LoadError::at(
+                p.position(name).unwrap_or(&node.pos),
+                format!("{}: give the pigments or 'sigma_a', not both", node.desc()),
+            ));
+        }
+        let sigma_a = texture_param(b, node, "sigma_a", None)?;
+        if let Texture::Constant(v) = &sigma_a {
+            check_non_negative(node, "sigma_a", *v)?;
+        }
+        HairAbsorption::SigmaA { sigma_a, scale: float("scale", Hair::DEFAULT_SCALE)? }
+    } else {
+        HairAbsorption::Pigments {
+            eumelanin: float("eumelanin", Hair::DEFAULT_EUMELANIN)?,
+            pheomelanin: float("pheomelanin", Hair::DEFAULT_PHEOMELANIN)?,
+        }
+    };
+    // `scale` applies to `sigma_a`; Mitsuba reads it with the pigments too
+    p.get_float("scale")?;
+    let eta = relative_ior(node, Hair::DEFAULT_INT_IOR, Hair::DEFAULT_EXT_IOR)?;
+    Hair::new(
+        absorption,
+        eta,
+        float("longitudinal_roughness", Hair::DEFAULT_LONGITUDINAL_ROUGHNESS)?,
+        float("azimuthal_roughness", Hair::DEFAULT_AZIMUTHAL_ROUGHNESS)?,
+        float("scale_tilt", Hair::DEFAULT_SCALE_TILT)?,
+    )
+    .map(Bsdf::Hair)
+    .map_err(at(node))
 }
 
 fn merl(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {

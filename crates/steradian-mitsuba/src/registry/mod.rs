@@ -229,7 +229,7 @@ pub(crate) type Plugins<F> = [(&'static str, F)];
 /// naming one is told so by name, not that the type is unknown. Polarised and spectral-only
 /// plugins stay here for good (steradian renders RGB); the others are missing features.
 pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
-    ("bsdf", &["hair", "measured", "measured_polarized", "polarizer", "retarder"]),
+    ("bsdf", &["measured", "measured_polarized", "polarizer", "retarder"]),
     ("emitter", &["sunsky", "timed_sunsky"]),
     ("shape", &["sdfgrid", "ellipsoids", "ellipsoidsmesh"]),
     ("film", &["specfilm"]),

@@ -13,6 +13,7 @@ mod dielectric;
 mod diffuse;
 mod disney;
 pub mod fresnel;
+mod hair;
 pub mod ior;
 mod mask;
 mod merl;
@@ -35,6 +36,7 @@ pub use bumpmap::BumpMap;
 pub use conductor::Conductor;
 pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
+pub use hair::{Hair, HairAbsorption};
 pub use mask::Mask;
 pub use merl::{Merl, MerlTable};
 pub use microfacet::{MicrofacetDistribution, MicrofacetKind};
@@ -168,6 +170,7 @@ pub enum Bsdf {
     BlendBsdf(BlendBsdf),
     BumpMap(BumpMap),
     NormalMap(NormalMap),
+    Hair(Hair),
 }
 
 /// Dispatches a method call to the variant's implementation.
@@ -192,6 +195,7 @@ macro_rules! dispatch {
             Bsdf::BlendBsdf($b) => $e,
             Bsdf::BumpMap($b) => $e,
             Bsdf::NormalMap($b) => $e,
+            Bsdf::Hair($b) => $e,
         }
     };
 }
@@ -263,7 +267,7 @@ impl Bsdf {
             | Bsdf::PPlastic(_)
             | Bsdf::Principled(_)
             | Bsdf::PrincipledThin(_) => true,
-            Bsdf::Phong(_) | Bsdf::Merl(_) => true,
+            Bsdf::Phong(_) | Bsdf::Merl(_) | Bsdf::Hair(_) => true,
             Bsdf::Conductor(_) | Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided(b) => b.has_smooth_lobe(),
             Bsdf::Mask(b) => b.has_smooth_lobe(),

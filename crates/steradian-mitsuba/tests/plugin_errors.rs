@@ -50,10 +50,10 @@ fn unknown_shape_type() {
 #[test]
 fn unknown_bsdf_type() {
     check(
-        &err(&scene("<bsdf type=\"hair\"/>")),
+        &err(&scene("<bsdf type=\"measured\"/>")),
         2,
         1,
-        &["the Mitsuba 3 bsdf plugin 'hair' is not supported by steradian", "diffuse"],
+        &["the Mitsuba 3 bsdf plugin 'measured' is not supported by steradian", "diffuse"],
     );
     // Nested in a shape, and nested in a twosided BSDF.
     let xml = scene("<shape type=\"sphere\">\n  <bsdf type=\"plastik\"/>\n</shape>");

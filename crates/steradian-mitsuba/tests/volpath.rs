@@ -2,7 +2,7 @@
 //! render-test rule against 4096-spp `llvm_ad_rgb` references with variance images, made by
 //! `scripts/mitsuba_reference.py`): a homogeneous sphere behind a null boundary, lights and
 //! camera inside a fog, a glass sphere holding a medium, a rough glass cube under a spot light,
-//! a chromatic medium under `volpathmis`, a `gridvolume` cloud. Mutated scenes fail the same
+//! a chromatic medium under `volpathmis`, a `gridvolume` cloud, a `tabphase` table. Mutated scenes fail the same
 //! rule. Closed forms: Beer–Lambert transmittance through a slab and a sphere, a point
 //! source's irradiance through an absorbing slab, single scattering from a half-space under a
 //! collimated beam, within 3 standard errors; a white furnace inside a non-absorbing medium
@@ -50,6 +50,17 @@ fn mutant_fails(name: &str, from: &str, to: &str) {
 fn homogeneous_sphere_in_a_null_boundary() {
     matches_mitsuba("volpath-sphere");
     mutant_fails("volpath-sphere", "0.9, 0.8, 0.6", "0.8, 0.7, 0.5");
+}
+
+/// `tabphase`: the table read from forward to back as Mitsuba reads it; reversed, it fails.
+#[test]
+fn tabulated_phase_function() {
+    matches_mitsuba("volpath-tabphase");
+    mutant_fails(
+        "volpath-tabphase",
+        "1.2, 0.5, 0.15, 0.1, 0.15, 0.4, 1.5, 5, 14",
+        "14, 5, 1.5, 0.4, 0.15, 0.1, 0.15, 0.5, 1.2",
+    );
 }
 
 #[test]

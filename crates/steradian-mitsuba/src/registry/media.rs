@@ -13,7 +13,9 @@ use steradian::geometry::Transform;
 use steradian::medium::{
     GridVolume, Heterogeneous, Homogeneous, Medium, Volume, VolumeData, VolumeFilter, VolumeWrap,
 };
-use steradian::phase::{BlendPhase, HenyeyGreenstein, Isotropic, PhaseFunction, Rayleigh};
+use steradian::phase::{
+    BlendPhase, HenyeyGreenstein, Isotropic, PhaseFunction, Rayleigh, TabulatedPhase,
+};
 use steradian::Spectrum;
 
 use super::{at, at_param, choice, lookup, required_string, Builder, Plugins};
@@ -35,8 +37,13 @@ pub(super) const VOLUMES: &Plugins<BuildVolume> =
 type BuildPhase = fn(&PluginNode) -> Result<PhaseFunction, LoadError>;
 
 /// Every phase-function plugin, by Mitsuba `type`.
-pub(super) const PHASES: &Plugins<BuildPhase> =
-    &[("isotropic", isotropic), ("hg", hg), ("rayleigh", rayleigh), ("blendphase", blendphase)];
+pub(super) const PHASES: &Plugins<BuildPhase> = &[
+    ("isotropic", isotropic),
+    ("hg", hg),
+    ("rayleigh", rayleigh),
+    ("tabphase", tabphase),
+    ("blendphase", blendphase),
+];
 
 /// Builds one medium from its node.
 pub(super) fn build(b: &Builder, node: &PluginNode) -> Result<Medium, LoadError> {
@@ -273,6 +280,26 @@ fn hg(node: &PluginNode) -> Result<PhaseFunction, LoadError> {
 /// `rayleigh` (no parameters).
 fn rayleigh(_: &PluginNode) -> Result<PhaseFunction, LoadError> {
     Ok(PhaseFunction::Rayleigh(Rayleigh))
+}
+
+/// `tabphase`: `values`, a string of numbers separated by commas or spaces (Mitsuba's).
+fn tabphase(node: &PluginNode) -> Result<PhaseFunction, LoadError> {
+    let p = &node.props;
+    let text = p.get_string("values")?.ok_or_else(|| {
+        LoadError::at(&node.pos, format!("{}: missing 'values' (a list of numbers)", node.desc()))
+    })?;
+    let pos = p.position("values").unwrap_or(&node.pos);
+    let values = text
+        .split([',', ' '])
+        .filter(|w| !w.is_empty())
+        .map(|w| {
+            w.trim().parse::<f32>().map_err(|_| {
+                LoadError::at(pos, format!("{}: '{w}' in 'values' is not a number", node.desc()))
+            })
+        })
+        .collect::<Result<Vec<f32>, LoadError>>()?;
+    let table = TabulatedPhase::new(&values).map_err(at_param(node))?;
+    Ok(PhaseFunction::Tabulated(table))
 }
 
 /// `blendphase`: `weight` and two nested phase functions, ordered as Mitsuba orders them (by

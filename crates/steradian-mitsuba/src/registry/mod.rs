@@ -234,7 +234,7 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("shape", &["sdfgrid", "ellipsoids", "ellipsoidsmesh"]),
     ("film", &["specfilm"]),
     ("texture", &["volume"]),
-    ("phase", &["sggx", "tabphase"]),
+    ("phase", &["sggx"]),
     ("integrator", &["stokes", "prb_basic"]),
 ];
 

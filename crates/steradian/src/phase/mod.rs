@@ -8,18 +8,20 @@
 //! pdf = p exactly, so every sample's weight p/pdf is 1.
 //!
 //! One file per Mitsuba 3 plugin, each opening with its manual: `isotropic`, `hg`
-//! (Henyey–Greenstein), `rayleigh`, `blendphase`. Phase functions are scalar (the same in
+//! (Henyey–Greenstein), `rayleigh`, `tabphase` (a table over cos θ), `blendphase`. Phase functions are scalar (the same in
 //! every channel), as in Mitsuba 3.
 
 mod blendphase;
 mod hg;
 mod isotropic;
 mod rayleigh;
+mod tabphase;
 
 pub use blendphase::BlendPhase;
 pub use hg::HenyeyGreenstein;
 pub use isotropic::Isotropic;
 pub use rayleigh::Rayleigh;
+pub use tabphase::TabulatedPhase;
 
 use glam::{Vec2, Vec3};
 
@@ -31,6 +33,7 @@ pub enum PhaseFunction {
     Isotropic(Isotropic),
     HenyeyGreenstein(HenyeyGreenstein),
     Rayleigh(Rayleigh),
+    Tabulated(TabulatedPhase),
     /// Two phase functions mixed (boxed: the family is recursive).
     Blend(Box<BlendPhase>),
 }
@@ -53,6 +56,7 @@ impl PhaseFunction {
             PhaseFunction::Isotropic(p) => p.eval(wo, wi),
             PhaseFunction::HenyeyGreenstein(p) => p.eval(wo, wi),
             PhaseFunction::Rayleigh(p) => p.eval(wo, wi),
+            PhaseFunction::Tabulated(p) => p.eval(wo, wi),
             PhaseFunction::Blend(p) => p.eval(wo, wi),
         }
     }
@@ -69,6 +73,7 @@ impl PhaseFunction {
             PhaseFunction::Isotropic(p) => p.sample(wo, u2),
             PhaseFunction::HenyeyGreenstein(p) => p.sample(wo, u2),
             PhaseFunction::Rayleigh(p) => p.sample(wo, u2),
+            PhaseFunction::Tabulated(p) => p.sample(wo, u2),
             PhaseFunction::Blend(p) => p.sample(wo, u1, u2),
         }
     }

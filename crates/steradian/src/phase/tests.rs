@@ -19,6 +19,12 @@ fn family() -> Vec<PhaseFunction> {
         hg(0.9),
         hg(2e-4),
         PhaseFunction::Rayleigh(Rayleigh),
+        // a forward peak, a dip and a backward lobe; two nodes (linear in cos θ); a zero
+        PhaseFunction::Tabulated(
+            TabulatedPhase::new(&[0.6, 0.3, 0.1, 0.2, 0.5, 1.5, 6.0]).unwrap(),
+        ),
+        PhaseFunction::Tabulated(TabulatedPhase::new(&[0.2, 1.0]).unwrap()),
+        PhaseFunction::Tabulated(TabulatedPhase::new(&[0.0, 1.0, 0.0, 2.0]).unwrap()),
         PhaseFunction::Blend(Box::new(
             BlendPhase::new(0.3, PhaseFunction::Isotropic(Isotropic), hg(0.8)).unwrap(),
         )),
@@ -131,4 +137,7 @@ fn parameters_out_of_range_are_errors() {
         assert!(BlendPhase::new(w, iso(), iso()).is_err(), "weight = {w}");
     }
     assert!(BlendPhase::new(1.0, iso(), iso()).is_ok());
+    for values in [&[1.0f32][..], &[0.0, 0.0, 0.0], &[1.0, -0.1, 1.0], &[1.0, f32::NAN]] {
+        assert!(TabulatedPhase::new(values).is_err(), "values = {values:?}");
+    }
 }

@@ -132,7 +132,11 @@ impl LinearCurve {
         let next = self.points[i as usize + 2 * usize::from(!ends.last)];
         let caps = Caps {
             begin: ends.first,
-            next: (!ends.last).then(|| (next.xyz().as_dvec3(), next.w as f64)),
+            end: if ends.last {
+                EndCap::Whole
+            } else {
+                EndCap::UpTo(next.xyz().as_dvec3(), next.w as f64)
+            },
         };
         let (t, v) = intersect_round_segment(
             a.xyz().as_dvec3(),
@@ -206,13 +210,18 @@ struct SegmentEnds {
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Caps {
     pub begin: bool,
-    /// The next control point (centre, radius), where there is one.
-    pub next: Option<(DVec3, f64)>,
+    pub end: EndCap,
 }
 
-impl Caps {
-    /// Both spheres whole (a segment on its own).
-    pub(super) const BOTH: Caps = Caps { begin: true, next: None };
+/// The sphere at a segment's end.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum EndCap {
+    /// None: the curve is open there (`bsplinecurve`'s ends).
+    Open,
+    /// All of it: the curve ends there.
+    Whole,
+    /// Up to where the next segment's cone begins, that segment's far end (centre, radius).
+    UpTo(DVec3, f64),
 }
 
 /// Mitsuba's frame about a segment's axis: the rotation axis is +z projected off the segment
@@ -280,7 +289,7 @@ pub(super) fn intersect_round_segment(
         }
     }
     for (c, r, v) in [(p0, r0, 0.0), (p1, r1, 1.0)] {
-        if v == 0.0 && !caps.begin {
+        if v == 0.0 && !caps.begin || v == 1.0 && matches!(caps.end, EndCap::Open) {
             continue;
         }
         let oc = o - c;
@@ -295,10 +304,12 @@ pub(super) fn intersect_round_segment(
         // the hull is the larger sphere, whose front is nearer than the smaller one's
         let on_cap = g <= 0.0 || if v == 0.0 { y <= 0.0 } else { y >= g };
         // the end sphere stops where the next segment's cone starts
-        let before_next = v == 0.0
-            || caps
-                .next
-                .is_none_or(|(p2, r2)| (o + t * d - p1).dot(p2 - p1) + r1 * (r2 - r1) <= 0.0);
+        let before_next = match caps.end {
+            EndCap::UpTo(p2, r2) if v == 1.0 => {
+                (o + t * d - p1).dot(p2 - p1) + r1 * (r2 - r1) <= 0.0
+            }
+            _ => true,
+        };
         if on_cap && before_next {
             consider(t, v);
         }

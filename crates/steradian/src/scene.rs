@@ -326,6 +326,34 @@ impl Scene {
 
     /// The area light of the shape hit, if any.
     #[inline]
+    /// The camera ray `ray` continued past the emitting surfaces it meets first (area lights,
+    /// luminous openings), as Mitsuba 3's `hide_emitters` has camera rays pass through the
+    /// lights they would show, to what lies behind them (Mitsuba 3.9.1 `path`, `volpath`,
+    /// `direct` and the `prb` family alike); `ray` itself where its first hit does not emit.
+    pub fn ray_past_emitters(&self, ray: &Ray) -> Ray {
+        /// Emitting surfaces passed at most (a stack of lights in front of the camera).
+        const MAX_PASSED: usize = 64;
+        let mut ray = *ray;
+        if !self
+            .emitters
+            .iter()
+            .any(|e| matches!(e, Emitter::Area(_) | Emitter::LuminousOpening(_)))
+        {
+            return ray;
+        }
+        for _ in 0..MAX_PASSED {
+            let Some(si) = self.intersect(&ray) else { break };
+            if self.area_emitter(&si).is_none() {
+                break;
+            }
+            let mut next = si.spawn_ray(ray.d);
+            // the far clip stays where it was
+            next.t_max = ray.t_max - si.t;
+            ray = next;
+        }
+        ray
+    }
+
     pub fn area_emitter(&self, si: &SurfaceInteraction) -> Option<(u32, &Emitter)> {
         let e = self.binding(si).emitter?;
         Some((e, &self.emitters[e as usize]))

@@ -43,6 +43,11 @@ pub fn camera_ray_alpha(
     if emitters == EmitterVisibility::Visible && environment {
         return 1.0;
     }
+    // hidden lights let camera rays through (`Scene::ray_past_emitters`)
+    let ray = &match emitters {
+        EmitterVisibility::Visible => *ray,
+        EmitterVisibility::Hidden => scene.ray_past_emitters(ray),
+    };
     // a point in free space (no normal to offset along), in the camera's medium
     let pass = scene.transmittance(
         ray.o,

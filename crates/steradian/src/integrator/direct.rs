@@ -5,7 +5,7 @@
 //! | `shading_samples` | integer | 1              | sets both counts below at once |
 //! | `emitter_samples` | integer | shading_samples| light samples per camera ray |
 //! | `bsdf_samples`    | integer | shading_samples| BSDF samples per camera ray |
-//! | `hide_emitters`   | boolean | false          | emitters seen directly contribute nothing |
+//! | `hide_emitters`   | boolean | false          | camera rays pass through the area lights they meet (to what lies behind them) and see no environment, as in Mitsuba 3.9.1 |
 //! | `light_selection` | string | `uniform`     | steradian's own: `uniform` or `power` (see `emitter/light_selection.rs`) |
 //!
 //! Light samples and BSDF samples are combined with the power heuristic, each strategy weighted
@@ -47,6 +47,11 @@ impl DirectIntegrator {
 
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
         let show = self.emitters == EmitterVisibility::Visible;
+        // hidden lights let camera rays through (`Scene::ray_past_emitters`)
+        let ray = &match self.emitters {
+            EmitterVisibility::Visible => *ray,
+            EmitterVisibility::Hidden => scene.ray_past_emitters(ray),
+        };
         let Some(si) = scene.intersect(ray) else {
             return match show {
                 true => scene.escaped_radiance(ray.d, |_| 1.0),

@@ -5,7 +5,7 @@
 //! | `max_depth`     | integer | −1 (∞)  | longest path in segments: 1 = emitters seen directly, 2 = direct lighting, 0 = black |
 //! | `rr_depth`      | integer | 5       | depth from which Russian roulette may end paths |
 //! | `rr_scale`      | float   | 4       | steradian's own: κ in the roulette's survival probability min(κ·max(β)·η², 0.95); 1 = Mitsuba's |
-//! | `hide_emitters` | boolean | false   | emitters seen directly by camera rays contribute nothing |
+//! | `hide_emitters` | boolean | false   | camera rays pass through the lights they meet (area lights: to what lies behind them) and see no environment, as in Mitsuba 3.9.1 |
 //! | `light_selection` | string | `uniform` | steradian's own: `uniform` or `power` (see `emitter/light_selection.rs`) |
 //! | `branches`      | integer | chosen  | steradian's own: paths continued from each camera ray's first hit (1 to 64; 1 = Mitsuba's estimator); unset, a pilot chooses 1, 2, 4, 8 or 16 (`branching.rs`) |
 //!
@@ -402,7 +402,11 @@ impl PathTracer {
         if self.max_depth == Some(0) {
             return None;
         }
-        let st = PathState::camera(camera_ray);
+        let st = match self.emitters {
+            EmitterVisibility::Visible => PathState::camera(camera_ray),
+            // hidden lights let camera rays through (`Scene::ray_past_emitters`)
+            EmitterVisibility::Hidden => PathState::camera(&scene.ray_past_emitters(camera_ray)),
+        };
         self.arrive(scene, &st, result, counts, tally).map(|si| (si, st))
     }
 

@@ -4,7 +4,7 @@
 //! |-----------------|---------|---------|---------|
 //! | `max_depth`     | integer | −1 (∞)  | longest path in scattering events (surface bounces and medium scatterings); 1 = emitters seen directly |
 //! | `rr_depth`      | integer | 5       | depth from which Russian roulette may end paths |
-//! | `hide_emitters` | boolean | false   | emitters seen directly by camera rays (through null surfaces and media too) contribute nothing |
+//! | `hide_emitters` | boolean | false   | camera rays pass through the area lights they meet first (to what lies behind them) and see no environment or light through null surfaces and media, as in Mitsuba 3.9.1 |
 //! | `light_selection` | string | `uniform` | steradian's own: `uniform` or `power` (see `emitter/light_selection.rs`) |
 //!
 //! **Estimator** (Mitsuba 3's `volpath`). A ray in a medium (`crate::medium`) first samples a
@@ -89,7 +89,12 @@ impl VolPathTracer {
     /// Radiance arriving along `camera_ray` (W/(m²·sr)), which starts in the scene's camera
     /// medium.
     pub fn li(&self, scene: &Scene, camera_ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
-        self.li_from(scene, camera_ray, scene.camera_medium, LastScatter::Unsampled, sampler)
+        let ray = match self.emitters {
+            EmitterVisibility::Visible => *camera_ray,
+            // hidden lights let camera rays through (`Scene::ray_past_emitters`)
+            EmitterVisibility::Hidden => scene.ray_past_emitters(camera_ray),
+        };
+        self.li_from(scene, &ray, scene.camera_medium, LastScatter::Unsampled, sampler)
     }
 
     /// Radiance arriving along `ray`, which starts in `medium` at depth 0, chosen by a

@@ -19,8 +19,8 @@ use crate::scene::{MediaAlong, Scene};
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum AlphaRule {
     /// 1 where the camera ray hits any surface, `null` ones included (`direct`, `depth`,
-    /// `aov`).
-    AnySurface,
+    /// `aov`), past the lights `direct` hides.
+    AnySurface { emitters: EmitterVisibility },
     /// The probability that the path meets something other than a null crossing; 1 where an
     /// environment is visible (`path`, whose camera rays ignore media; `volpath`, whose
     /// follow them).
@@ -35,19 +35,22 @@ pub fn camera_ray_alpha(
     rule: AlphaRule,
     sampler: &mut PixelSampler,
 ) -> f32 {
+    // hidden lights let camera rays through (`Scene::ray_past_emitters`)
+    let past_hidden = |emitters: EmitterVisibility| match emitters {
+        EmitterVisibility::Visible => *ray,
+        EmitterVisibility::Hidden => scene.ray_past_emitters(ray),
+    };
     let (media, emitters) = match rule {
-        AlphaRule::AnySurface => return if scene.occluded(ray) { 1.0 } else { 0.0 },
+        AlphaRule::AnySurface { emitters } => {
+            return if scene.occluded(&past_hidden(emitters)) { 1.0 } else { 0.0 }
+        }
         AlphaRule::Scattering { media, emitters } => (media, emitters),
     };
     let environment = scene.environment.is_some() || scene.sun.is_some();
     if emitters == EmitterVisibility::Visible && environment {
         return 1.0;
     }
-    // hidden lights let camera rays through (`Scene::ray_past_emitters`)
-    let ray = &match emitters {
-        EmitterVisibility::Visible => *ray,
-        EmitterVisibility::Hidden => scene.ray_past_emitters(ray),
-    };
+    let ray = &past_hidden(emitters);
     // a point in free space (no normal to offset along), in the camera's medium
     let pass = scene.transmittance(
         ray.o,

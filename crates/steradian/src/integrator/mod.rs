@@ -105,8 +105,9 @@ impl Integrator {
             Integrator::VolPath(p) => {
                 Some(AlphaRule::Scattering { media: MediaAlong::Followed, emitters: p.emitters })
             }
-            Integrator::Direct(_) | Integrator::Depth(_) | Integrator::Aov(_) => {
-                Some(AlphaRule::AnySurface)
+            Integrator::Direct(d) => Some(AlphaRule::AnySurface { emitters: d.emitters }),
+            Integrator::Depth(_) | Integrator::Aov(_) => {
+                Some(AlphaRule::AnySurface { emitters: EmitterVisibility::Visible })
             }
             Integrator::Moment(MomentIntegrator { nested }) => {
                 nested.first().and_then(|(_, i)| i.alpha_rule())

@@ -73,7 +73,6 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
         ("bsdf", "polarizer"),
         ("emitter", "sunsky"),
         ("emitter", "timed_sunsky"),
-        ("integrator", "prb_basic"),
         ("integrator", "stokes"),
     ] {
         let e = err(&scene(&format!("<{tag} type=\"{ty}\"/>")));

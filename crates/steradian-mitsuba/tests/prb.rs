@@ -4,7 +4,8 @@
 //! `null` and `volpath-sphere` scenes under `prb` and `prbvolpath` pass the render-test rule
 //! against the references of `path` and `volpath` (Mitsuba 3.9.1's own `prb` and `prbvolpath`
 //! renders of those scenes at 256 spp pass against the same references: 2 of 4800 and 0 of
-//! 3072 pixels failing, 2026-12-06). Their gradient-only parameters are checked.
+//! 3072 pixels failing, 2026-12-06). `prb_basic` samples BSDFs alone and matches Mitsuba's
+//! own reference. Their gradient-only parameters are checked.
 
 mod common;
 
@@ -20,6 +21,19 @@ fn prb_renders_as_path() {
     let job =
         reference_scene_with("null.xml", "<integrator type=\"path\">", "<integrator type=\"prb\">");
     assert!(z_test_against(&job, SPP, "null", "null under prb").passes());
+}
+
+/// `prb_basic` samples BSDFs alone: it matches Mitsuba's `prb_basic` reference (the point
+/// light unseen), and `prb`, which samples lights and so sees the point light, fails there.
+#[test]
+fn prb_basic_sees_only_what_its_rays_hit() {
+    let job = steradian_mitsuba::load_file(&common::reference_scene("prb-basic.xml"), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(z_test_against(&job, SPP, "prb-basic", "prb-basic").passes());
+    let d = [("integrator".to_string(), "prb".to_string())];
+    let job = steradian_mitsuba::load_file(&common::reference_scene("prb-basic.xml"), &d)
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(!z_test_against(&job, SPP, "prb-basic", "prb-basic scene under prb").passes());
 }
 
 #[test]

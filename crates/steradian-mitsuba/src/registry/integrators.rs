@@ -4,14 +4,15 @@
 //! `direct_projective` as `path` with `max_depth` 2. Their default `max_depth` is 6, as in
 //! Mitsuba 3.9.1's Python integrators; the gradient-only parameters of the projective ones
 //! (`sppc`, `sppp`, `sppi`, `guiding`, `guiding_proj`, `guiding_rounds`, `project_seed`) are
-//! checked and have no effect. `prb_basic` stays unsupported: it samples BSDFs only, so
-//! Mitsuba renders no light from point, spot and directional lights with it, which `path`
-//! would.
+//! checked and have no effect. `prb_basic` samples BSDFs only, with no light sampling, MIS or
+//! Russian roulette (`max_depth` 6 by default; `rr_depth` is read, as Mitsuba's base class
+//! reads it, and does nothing): it sees area lights and environments where its rays hit them,
+//! and no point, spot or directional light, as in Mitsuba.
 
 use steradian::emitter::LightSelection;
 use steradian::integrator::{
-    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, NullPaths,
-    DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
+    parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LastVertex,
+    NextEvent, NullPaths, DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
 };
 use steradian::integrator::{
     AovField, AovIntegrator, DepthIntegrator, DirectIntegrator, Integrator, MomentIntegrator,
@@ -64,6 +65,7 @@ pub(super) const INTEGRATORS: &Plugins<BuildIntegrator> = &[
     ("volpathmis", volpath),
     ("prb", prb),
     ("prb_projective", prb_projective),
+    ("prb_basic", prb_basic),
     ("prbvolpath", prbvolpath),
     ("direct_projective", direct_projective),
     ("direct", direct),
@@ -112,6 +114,19 @@ const RB_DEFAULT_MAX_DEPTH: Option<u32> = Some(6);
 /// null surfaces alone count (`NullPaths::Kept`).
 fn prb(node: &PluginNode) -> Result<Integrator, LoadError> {
     keep_null_paths(path_with(node, RB_DEFAULT_MAX_DEPTH)?)
+}
+
+/// `prb_basic`: `prb` without light sampling, MIS or Russian roulette (module docs).
+fn prb_basic(node: &PluginNode) -> Result<Integrator, LoadError> {
+    Ok(match keep_null_paths(path_with(node, RB_DEFAULT_MAX_DEPTH)?)? {
+        Integrator::Path(p) => Integrator::Path(PathTracer {
+            next_event: NextEvent::Skipped,
+            rr_depth: u32::MAX,
+            last_vertex: LastVertex::Mis,
+            ..p
+        }),
+        other => other,
+    })
 }
 
 /// `prb_projective`: `prb` with projective sampling for visibility gradients.

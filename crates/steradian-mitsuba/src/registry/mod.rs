@@ -235,7 +235,7 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("film", &["specfilm"]),
     ("texture", &["volume"]),
     ("phase", &["sggx"]),
-    ("integrator", &["stokes", "prb_basic"]),
+    ("integrator", &["stokes"]),
 ];
 
 /// The builder for `node`'s `type`, or an error: a Mitsuba 3 plugin steradian lacks is named as

@@ -23,8 +23,8 @@ pub use irradiance::estimate_irradiance;
 pub use moment::MomentIntegrator;
 pub use path::{
     parse_branches, parse_max_depth, parse_rr_scale, Branches, EmitterVisibility, LastVertex,
-    NullPaths, PathTracer, DEFAULT_BRANCHES, DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH, DEFAULT_RR_SCALE,
-    MAX_BRANCHES,
+    NextEvent, NullPaths, PathTracer, DEFAULT_BRANCHES, DEFAULT_MAX_DEPTH, DEFAULT_RR_DEPTH,
+    DEFAULT_RR_SCALE, MAX_BRANCHES,
 };
 pub use ptracer::ParticleTracer;
 pub use volpath::VolPathTracer;

@@ -93,6 +93,19 @@ pub struct PathTracer {
     pub last_vertex: LastVertex,
     /// Whether paths that never scatter off a non-null lobe count (module docs).
     pub null_paths: NullPaths,
+    /// Whether lights are sampled at each vertex (Mitsuba's `prb_basic` does not).
+    pub next_event: NextEvent,
+}
+
+/// Whether a path samples a light at each vertex (next-event estimation, combined with the
+/// BSDF sample by MIS) or finds light only where its BSDF samples hit it (Mitsuba's
+/// `prb_basic`: unbiased for area lights and environments, blind to point, spot and
+/// directional lights, which no ray can hit).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum NextEvent {
+    #[default]
+    Sampled,
+    Skipped,
 }
 
 /// Whether a path that never scatters off a lobe that is not null counts (module docs, "Null
@@ -153,6 +166,7 @@ impl Default for PathTracer {
             branches: Branches::default(),
             last_vertex: LastVertex::default(),
             null_paths: NullPaths::default(),
+            next_event: NextEvent::default(),
         }
     }
 }
@@ -448,9 +462,13 @@ impl PathTracer {
         let Some(si) = scene.intersect(&st.ray) else {
             if show_emitters && scene.has_light_at_infinity() {
                 *result += st.beta
-                    * scene.escaped_radiance(st.ray.d, |light_pdf| match st.prev_lobe {
-                        Lobe::Delta | Lobe::Null => 1.0,
-                        Lobe::Smooth => power_heuristic(st.prev_pdf, light_pdf),
+                    * scene.escaped_radiance(st.ray.d, |light_pdf| {
+                        match (st.prev_lobe, self.next_event) {
+                            (Lobe::Delta | Lobe::Null, _) | (_, NextEvent::Skipped) => 1.0,
+                            (Lobe::Smooth, NextEvent::Sampled) => {
+                                power_heuristic(st.prev_pdf, light_pdf)
+                            }
+                        }
                     });
             }
             return None;
@@ -459,9 +477,9 @@ impl PathTracer {
         if let (Some((e, emitter)), true) = (scene.area_emitter(&si), show_emitters) {
             let le = emitter.radiance(si.wo, si.n, si.uv);
             if le != Spectrum::ZERO {
-                let w = match st.prev_lobe {
-                    Lobe::Delta | Lobe::Null => 1.0,
-                    Lobe::Smooth => power_heuristic(
+                let w = match (st.prev_lobe, self.next_event) {
+                    (Lobe::Delta | Lobe::Null, _) | (_, NextEvent::Skipped) => 1.0,
+                    (Lobe::Smooth, NextEvent::Sampled) => power_heuristic(
                         st.prev_pdf,
                         scene.pdf_emitter_direction(e, st.prev_p, st.ray.d, &si.surface_point()),
                     ),
@@ -510,12 +528,13 @@ impl PathTracer {
 
         // at the last vertex the BSDF sample would only look for an emitter to hit: where light
         // sampling alone is enough (module docs), it takes the whole light and the path ends here
-        let light_only = self.last_vertex == LastVertex::LightOnlyWhereBounded
+        let light_only = self.next_event == NextEvent::Sampled
+            && self.last_vertex == LastVertex::LightOnlyWhereBounded
             && matches!(self.max_depth, Some(max) if st.depth + 2 >= max)
             && scene.light_sampling_suffices(bsdf, si.p);
 
         // next-event estimation
-        if bsdf.has_smooth_lobe() {
+        if self.next_event == NextEvent::Sampled && bsdf.has_smooth_lobe() {
             if let Some(es) = scene.sample_emitter_direction(si.p, u_light) {
                 let wi = si.to_local(es.wi);
                 let f = bsdf.eval(&sp, wo, wi) * wi.z.abs();

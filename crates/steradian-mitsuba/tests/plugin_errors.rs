@@ -68,7 +68,6 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
     for (tag, ty) in [
         ("shape", "ellipsoids"),
         ("shape", "sdfgrid"),
-        ("texture", "volume"),
         ("bsdf", "measured"),
         ("bsdf", "polarizer"),
         ("emitter", "sunsky"),

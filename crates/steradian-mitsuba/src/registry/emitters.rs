@@ -40,9 +40,12 @@ pub(crate) fn build_area(
     }
     let radiance = match photometric_strength(node, "radiance", &[("luminance", "cd/m²", 1.0)])? {
         Some(v) => steradian::texture::Texture::Constant(v),
-        None => {
-            super::textures::texture_param(b, node, "radiance", Some(AreaLight::DEFAULT_RADIANCE))?
-        }
+        None => super::textures::emitter_texture_param(
+            b,
+            node,
+            "radiance",
+            Some(AreaLight::DEFAULT_RADIANCE),
+        )?,
     };
     if let steradian::texture::Texture::Constant(v) = radiance {
         check_non_negative(node, "radiance", v)?;
@@ -350,8 +353,10 @@ fn spot(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let mut spot = SpotLight::new(&to_world, intensity, cutoff.to_radians(), beam.to_radians())
         .map_err(at_param(node))?;
     if node.children.iter().any(|c| c.name.as_deref() == Some("texture")) {
-        spot =
-            spot.with_texture(&to_world, super::textures::texture_param(b, node, "texture", None)?);
+        spot = spot.with_texture(
+            &to_world,
+            super::textures::emitter_texture_param(b, node, "texture", None)?,
+        );
     }
     Ok(Emitter::Spot(spot))
 }
@@ -403,7 +408,7 @@ fn constant(_b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError
 /// field of view of `perspective` with the image's aspect ratio (1 for a constant).
 fn projector(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     let p = &node.props;
-    let irradiance = super::textures::texture_param(b, node, "irradiance", None)?;
+    let irradiance = super::textures::emitter_texture_param(b, node, "irradiance", None)?;
     if let steradian::texture::Texture::Constant(v) = irradiance {
         check_non_negative(node, "irradiance", v)?;
     }

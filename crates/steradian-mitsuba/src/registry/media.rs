@@ -200,7 +200,7 @@ fn nested_volume(
 /// A medium's volume parameter: a nested `<volume name="...">` (or a `<ref>` to one), else a
 /// value (float, rgb or spectrum), else `default`, the last two as Mitsuba's `constvolume`
 /// over the unit cube.
-fn volume_param(
+pub(super) fn volume_param(
     b: &Builder,
     node: &PluginNode,
     name: &str,

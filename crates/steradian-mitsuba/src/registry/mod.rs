@@ -233,7 +233,6 @@ pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("emitter", &["sunsky", "timed_sunsky"]),
     ("shape", &["sdfgrid", "ellipsoids", "ellipsoidsmesh"]),
     ("film", &["specfilm"]),
-    ("texture", &["volume"]),
     ("phase", &["sggx"]),
     ("integrator", &["stokes"]),
 ];

@@ -4,6 +4,7 @@
 
 use steradian::texture::{
     read_image, Bitmap, Checkerboard, FilterType, MeshAttribute, Texture, UvTransform, WrapMode,
+    VOLUME_TEXTURE_DEFAULT,
 };
 use steradian::Spectrum;
 
@@ -120,7 +121,45 @@ pub(super) const TEXTURES: &Plugins<BuildTexture> = &[
     ("checkerboard", checkerboard),
     ("mesh_attribute", mesh_attribute),
     ("rawconstant", rawconstant),
+    ("volume", volume),
 ];
+
+/// `volume`: a nested `<volume name="volume">` (0.75 everywhere without one; a value is
+/// refused, as Mitsuba 3.9.1 refuses it) looked up at the surface point's world position: a
+/// 3-D texture for BSDF parameters (steradian's emitters evaluate textures by uv alone and
+/// refuse it).
+fn volume(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
+    if let Some(pos) = node.props.position("volume") {
+        return Err(LoadError::at(
+            pos,
+            format!("{}: 'volume' must be a nested <volume>, not a value", node.desc()),
+        ));
+    }
+    let v = super::media::volume_param(b, node, "volume", VOLUME_TEXTURE_DEFAULT)?;
+    Ok(Texture::Volume(std::sync::Arc::new(v)))
+}
+
+/// [`texture_param`] for an emitter, whose textures are looked up by uv alone: a `volume`
+/// texture (which needs the world position) is refused by name.
+pub(crate) fn emitter_texture_param(
+    b: &Builder,
+    node: &PluginNode,
+    name: &str,
+    default: Option<f32>,
+) -> Result<Texture, LoadError> {
+    let t = texture_param(b, node, name, default)?;
+    if t.reads_position() {
+        let pos = node.child(name).map(|c| c.pos()).unwrap_or(&node.pos);
+        return Err(LoadError::at(
+            pos,
+            format!(
+                "{}: a 'volume' texture for '{name}' is not supported on emitters",
+                node.desc()
+            ),
+        ));
+    }
+    Ok(t)
+}
 
 /// Builds a `<texture>` node.
 pub(crate) fn build(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {

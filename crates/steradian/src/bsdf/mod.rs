@@ -114,6 +114,8 @@ pub struct ShadingPoint {
     /// The primitive and barycentrics, for mesh-attribute textures ([`TexturePoint`]).
     pub prim: u32,
     pub bary: Vec2,
+    /// World position, m, for `volume` textures.
+    pub p: Vec3,
 }
 
 impl ShadingPoint {
@@ -126,13 +128,14 @@ impl ShadingPoint {
             ng: Vec3::Z,
             prim: u32::MAX,
             bary: Vec2::ZERO,
+            p: Vec3::ZERO,
         }
     }
 
     /// Where the BSDF's textures are evaluated.
     #[inline]
     pub fn tex(&self) -> TexturePoint {
-        TexturePoint { uv: self.uv, prim: self.prim, bary: self.bary }
+        TexturePoint { uv: self.uv, prim: self.prim, bary: self.bary, p: self.p }
     }
 
     /// The shading point of a surface interaction (its vectors taken to the shading frame).
@@ -145,6 +148,7 @@ impl ShadingPoint {
             ng: si.to_local(si.n),
             prim: si.prim,
             bary: si.bary,
+            p: si.p,
         }
     }
 }

@@ -87,6 +87,7 @@ impl Perturbed {
             ng: frame.to_local(sp.ng),
             prim: sp.prim,
             bary: sp.bary,
+            p: sp.p,
         };
         Perturbed { frame, sp: nested, shadowing: options.use_shadowing_function }
     }

@@ -200,7 +200,7 @@ mod tests {
     }
 
     fn at(prim: u32, b1: f32, b2: f32) -> TexturePoint {
-        TexturePoint { uv: Vec2::ZERO, prim, bary: Vec2::new(b1, b2) }
+        TexturePoint { uv: Vec2::ZERO, prim, bary: Vec2::new(b1, b2), p: glam::Vec3::ZERO }
     }
 
     #[test]

@@ -1,6 +1,7 @@
 //! Textures: spatially varying quantities (reflectances, radiances, roughnesses, opacities)
-//! looked up at a surface point ([`TexturePoint`]: its (u, v), and for mesh attributes the
-//! triangle and barycentrics). A texture returns values in the unit of the parameter it feeds.
+//! looked up at a surface point ([`TexturePoint`]: its (u, v), for mesh attributes the
+//! triangle and barycentrics, for `volume` textures the world position).
+//! A texture returns values in the unit of the parameter it feeds.
 //!
 //! Like Mitsuba 3, a texture can be asked for a colour ([`Texture::eval`]) or for one number
 //! ([`Texture::eval_1`], used by scalar parameters such as `alpha`, `opacity` or `weight`);
@@ -19,7 +20,7 @@ pub use image_file::{read_image, ImageFormat, LoadedImage};
 pub use mesh_attribute::{AttributeScope, MeshAttribute, MeshAttributeData};
 pub use rgbe::decode_rgbe;
 
-use glam::Vec2;
+use glam::{Vec2, Vec3};
 
 use crate::Spectrum;
 
@@ -34,13 +35,15 @@ pub struct TexturePoint {
     /// Barycentric coordinates of vertices 1 and 2 of triangle `prim` (vertex 0 has
     /// 1 − b1 − b2).
     pub bary: Vec2,
+    /// World position, m (what `volume` textures look up; the origin where unknown).
+    pub p: Vec3,
 }
 
 impl TexturePoint {
-    /// A point known only by its surface coordinates (no triangle).
+    /// A point known only by its surface coordinates (no triangle, no position).
     #[inline]
     pub fn at_uv(uv: Vec2) -> Self {
-        TexturePoint { uv, prim: u32::MAX, bary: Vec2::ZERO }
+        TexturePoint { uv, prim: u32::MAX, bary: Vec2::ZERO, p: Vec3::ZERO }
     }
 }
 
@@ -56,6 +59,9 @@ pub enum Texture {
     Checkerboard(Checkerboard),
     /// `mesh_attribute`: a per-vertex or per-face attribute of the mesh.
     MeshAttribute(MeshAttribute),
+    /// `volume`: a volume (`gridvolume`, `constvolume`) looked up at the world position, a
+    /// 3-D texture for surfaces without a meaningful uv (Mitsuba's `volume` texture).
+    Volume(std::sync::Arc<crate::medium::Volume>),
 }
 
 impl Texture {
@@ -68,6 +74,7 @@ impl Texture {
             Texture::Bitmap(b) => b.eval(p.uv),
             Texture::Checkerboard(c) => c.eval(p),
             Texture::MeshAttribute(m) => m.eval(p),
+            Texture::Volume(v) => v.eval(p.p),
         }
     }
 
@@ -80,6 +87,7 @@ impl Texture {
             Texture::Bitmap(b) => b.eval_1(p.uv),
             Texture::Checkerboard(c) => c.eval_1(p),
             Texture::MeshAttribute(m) => m.eval_1(p),
+            Texture::Volume(v) => v.eval(p.p).element_sum() / 3.0,
         }
     }
 
@@ -90,24 +98,34 @@ impl Texture {
         match self {
             Texture::Constant(_) => Some(Vec2::ZERO),
             Texture::Bitmap(b) => Some(b.eval_1_grad(p.uv)),
-            Texture::Checkerboard(_) | Texture::MeshAttribute(_) => None,
+            Texture::Checkerboard(_) | Texture::MeshAttribute(_) | Texture::Volume(_) => None,
         }
     }
 
     /// True when [`Texture::eval_1_grad`] is defined (a bump map can use the texture).
     pub fn has_gradient(&self) -> bool {
-        !matches!(self, Texture::Checkerboard(_) | Texture::MeshAttribute(_))
+        !matches!(self, Texture::Checkerboard(_) | Texture::MeshAttribute(_) | Texture::Volume(_))
     }
 
     /// The number of channels when a scalar reading ([`Texture::eval_1`]) is undefined in
     /// Mitsuba: a 3-channel mesh attribute anywhere in the tree.
     pub fn scalar_reading_refused(&self) -> Option<&str> {
         match self {
-            Texture::Constant(_) | Texture::Bitmap(_) => None,
+            Texture::Constant(_) | Texture::Bitmap(_) | Texture::Volume(_) => None,
             Texture::Checkerboard(c) => {
                 c.color0.scalar_reading_refused().or_else(|| c.color1.scalar_reading_refused())
             }
             Texture::MeshAttribute(m) => (m.channels() != 1).then_some(m.name.as_str()),
+        }
+    }
+
+    /// Whether the texture reads the world position (a `volume` texture, also inside a
+    /// `checkerboard`), which only surface shading points carry.
+    pub fn reads_position(&self) -> bool {
+        match self {
+            Texture::Volume(_) => true,
+            Texture::Checkerboard(c) => c.color0.reads_position() || c.color1.reads_position(),
+            Texture::Constant(_) | Texture::Bitmap(_) | Texture::MeshAttribute(_) => false,
         }
     }
 
@@ -118,6 +136,7 @@ impl Texture {
             Texture::Bitmap(b) => b.max_value(),
             Texture::Checkerboard(c) => c.color0.max_value().max(c.color1.max_value()),
             Texture::MeshAttribute(m) => m.max_value(),
+            Texture::Volume(v) => v.max(),
         }
     }
 
@@ -129,9 +148,14 @@ impl Texture {
             Texture::Bitmap(b) => b.mean(),
             Texture::Checkerboard(c) => 0.5 * (c.color0.mean() + c.color1.mean()),
             Texture::MeshAttribute(m) => m.mean(),
+            // the midrange, for sampling weights only
+            Texture::Volume(v) => Spectrum::splat(0.5 * (v.max() + v.min())),
         }
     }
 }
+
+/// The value of a `volume` texture given no volume (Mitsuba's).
+pub const VOLUME_TEXTURE_DEFAULT: f32 = 0.75;
 
 impl From<Spectrum> for Texture {
     fn from(v: Spectrum) -> Self {

@@ -8,7 +8,7 @@
 //! | `sample_emitters` | bool              | true      | whether scattering in the medium samples the lights |
 //! | (nested)          | phase             | isotropic | the phase function |
 //!
-//! Volumes (`volume.rs`) are `gridvolume` or `constvolume`, each looked up in its own unit
+//! Volumes (`texture/volume.rs`) are `gridvolume` or `constvolume`, each looked up in its own unit
 //! cube. As in Mitsuba 3, the medium fills the world-space bounding box of the `sigma_t`
 //! volume (outside it light flies freely), and its majorant is one number for all channels,
 //! μ̄ = `scale` × the largest value of `sigma_t`.
@@ -23,12 +23,12 @@
 
 use glam::Vec3;
 
-use super::volume::Volume;
 use super::{FlightWeight, FreeFlight};
 use crate::geometry::Ray;
 use crate::param::ParamError;
 use crate::phase::PhaseFunction;
 use crate::sampling::PixelSampler;
+use crate::texture::Volume;
 use crate::Spectrum;
 
 #[derive(Clone, Debug, PartialEq)]

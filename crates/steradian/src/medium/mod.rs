@@ -20,15 +20,13 @@
 //! on `volpathmis-chromatic` (σ_t 0.5, 2.5, 6 /m) relMSE against the 4096-spp reference at
 //! 4096 spp fell from 1.0e-3 to 2.8e-4 (2026-12-06, Intel Xeon, 2 cores).
 
-mod gridvolume;
 mod heterogeneous;
 mod homogeneous;
-mod volume;
 
-pub use gridvolume::{GridVolume, VolumeFilter, VolumeWrap};
 pub use heterogeneous::Heterogeneous;
 pub use homogeneous::Homogeneous;
-pub use volume::{Volume, VolumeData};
+// the volumes media read are 3-D textures (`texture::volume`), re-exported where media use them
+pub use crate::texture::{GridVolume, Volume, VolumeData, VolumeFilter, VolumeWrap};
 
 use crate::geometry::Ray;
 use crate::phase::PhaseFunction;

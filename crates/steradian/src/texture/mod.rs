@@ -1,6 +1,7 @@
 //! Textures: spatially varying quantities (reflectances, radiances, roughnesses, opacities)
 //! looked up at a surface point ([`TexturePoint`]: its (u, v), for mesh attributes the
-//! triangle and barycentrics, for `volume` textures the world position).
+//! triangle and barycentrics, for `volume` textures the world position). Volumes (`volume.rs`:
+//! `constvolume`; `gridvolume.rs`) are 3-D textures: media read them by position too.
 //! A texture returns values in the unit of the parameter it feeds.
 //!
 //! Like Mitsuba 3, a texture can be asked for a colour ([`Texture::eval`]) or for one number
@@ -10,15 +11,19 @@
 
 mod bitmap;
 mod checkerboard;
+mod gridvolume;
 mod image_file;
 mod mesh_attribute;
 mod rgbe;
+mod volume;
 
 pub use bitmap::{srgb_to_linear, Bitmap, FilterType, UvTransform, WrapMode};
 pub use checkerboard::Checkerboard;
+pub use gridvolume::{GridVolume, VolumeFilter, VolumeWrap};
 pub use image_file::{read_image, ImageFormat, LoadedImage};
 pub use mesh_attribute::{AttributeScope, MeshAttribute, MeshAttributeData};
 pub use rgbe::decode_rgbe;
+pub use volume::{Volume, VolumeData};
 
 use glam::{Vec2, Vec3};
 
@@ -61,7 +66,7 @@ pub enum Texture {
     MeshAttribute(MeshAttribute),
     /// `volume`: a volume (`gridvolume`, `constvolume`) looked up at the world position, a
     /// 3-D texture for surfaces without a meaningful uv (Mitsuba's `volume` texture).
-    Volume(std::sync::Arc<crate::medium::Volume>),
+    Volume(std::sync::Arc<Volume>),
 }
 
 impl Texture {

@@ -1,6 +1,7 @@
-//! Volumes: values over space that a heterogeneous medium reads (`sigma_t`, `albedo`), each
-//! filling the unit cube [0, 1]³ that its `to_world` places: Mitsuba's `gridvolume`
-//! (`gridvolume.rs`) and `constvolume` (`value`, spectrum, default 1; `to_world`).
+//! Volumes: values over space that a heterogeneous medium reads (`sigma_t`, `albedo`) and the
+//! `volume` texture looks up at surface points, each filling the unit cube [0, 1]³ that its
+//! `to_world` places: Mitsuba's `gridvolume` (`gridvolume.rs`) and `constvolume` (`value`,
+//! spectrum, default 1; `to_world`).
 
 use std::sync::Arc;
 

@@ -35,14 +35,9 @@ pub fn camera_ray_alpha(
     rule: AlphaRule,
     sampler: &mut PixelSampler,
 ) -> f32 {
-    // hidden lights let camera rays through (`Scene::ray_past_emitters`)
-    let past_hidden = |emitters: EmitterVisibility| match emitters {
-        EmitterVisibility::Visible => *ray,
-        EmitterVisibility::Hidden => scene.ray_past_emitters(ray),
-    };
     let (media, emitters) = match rule {
         AlphaRule::AnySurface { emitters } => {
-            return if scene.occluded(&past_hidden(emitters)) { 1.0 } else { 0.0 }
+            return if scene.occluded(&emitters.camera_ray(scene, ray)) { 1.0 } else { 0.0 }
         }
         AlphaRule::Scattering { media, emitters } => (media, emitters),
     };
@@ -50,7 +45,7 @@ pub fn camera_ray_alpha(
     if emitters == EmitterVisibility::Visible && environment {
         return 1.0;
     }
-    let ray = &past_hidden(emitters);
+    let ray = &emitters.camera_ray(scene, ray);
     // a point in free space (no normal to offset along), in the camera's medium
     let pass = scene.transmittance(
         ray.o,

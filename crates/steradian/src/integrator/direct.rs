@@ -47,11 +47,7 @@ impl DirectIntegrator {
 
     pub fn li(&self, scene: &Scene, ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
         let show = self.emitters == EmitterVisibility::Visible;
-        // hidden lights let camera rays through (`Scene::ray_past_emitters`)
-        let ray = &match self.emitters {
-            EmitterVisibility::Visible => *ray,
-            EmitterVisibility::Hidden => scene.ray_past_emitters(ray),
-        };
+        let ray = &self.emitters.camera_ray(scene, ray);
         let Some(si) = scene.intersect(ray) else {
             return match show {
                 true => scene.escaped_radiance(ray.d, |_| 1.0),

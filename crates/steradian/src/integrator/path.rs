@@ -78,6 +78,18 @@ pub enum EmitterVisibility {
     Hidden,
 }
 
+impl EmitterVisibility {
+    /// The camera ray as the integrator traces it: hidden lights let it through to what lies
+    /// behind them ([`Scene::ray_past_emitters`], Mitsuba 3.9.1's `hide_emitters`).
+    #[inline]
+    pub fn camera_ray(self, scene: &Scene, ray: &Ray) -> Ray {
+        match self {
+            EmitterVisibility::Visible => *ray,
+            EmitterVisibility::Hidden => scene.ray_past_emitters(ray),
+        }
+    }
+}
+
 #[derive(Clone, Debug, PartialEq)]
 pub struct PathTracer {
     /// Maximum number of path segments; `None` = unbounded.
@@ -416,11 +428,7 @@ impl PathTracer {
         if self.max_depth == Some(0) {
             return None;
         }
-        let st = match self.emitters {
-            EmitterVisibility::Visible => PathState::camera(camera_ray),
-            // hidden lights let camera rays through (`Scene::ray_past_emitters`)
-            EmitterVisibility::Hidden => PathState::camera(&scene.ray_past_emitters(camera_ray)),
-        };
+        let st = PathState::camera(&self.emitters.camera_ray(scene, camera_ray));
         self.arrive(scene, &st, result, counts, tally).map(|si| (si, st))
     }
 

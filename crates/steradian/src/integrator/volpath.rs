@@ -89,11 +89,7 @@ impl VolPathTracer {
     /// Radiance arriving along `camera_ray` (W/(m²·sr)), which starts in the scene's camera
     /// medium.
     pub fn li(&self, scene: &Scene, camera_ray: &Ray, sampler: &mut PixelSampler) -> Spectrum {
-        let ray = match self.emitters {
-            EmitterVisibility::Visible => *camera_ray,
-            // hidden lights let camera rays through (`Scene::ray_past_emitters`)
-            EmitterVisibility::Hidden => scene.ray_past_emitters(camera_ray),
-        };
+        let ray = self.emitters.camera_ray(scene, camera_ray);
         self.li_from(scene, &ray, scene.camera_medium, LastScatter::Unsampled, sampler)
     }
 

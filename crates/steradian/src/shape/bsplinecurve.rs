@@ -48,7 +48,10 @@ use std::f32::consts::PI;
 
 use glam::{Vec2, Vec3, Vec4, Vec4Swizzles};
 
-use super::linearcurve::{intersect_round_segment, local_frame, Caps, EndCap};
+use super::linearcurve::{
+    chord_bounds, frustum_area, intersect_chord, turns_about, world_control_points, Caps,
+    ControlPoints, EndCap,
+};
 use super::{PositionSample, ShapeError};
 use crate::geometry::{Aabb, Frame, PreliminaryHit, Ray, SurfaceInteraction, Transform};
 
@@ -93,27 +96,11 @@ pub struct BSplineCurve {
 impl BSplineCurve {
     /// The curves (control points x, y, z, radius before `to_world`, at least four each).
     pub fn new(curves: &[Vec<Vec4>], to_world: &Transform) -> Result<BSplineCurve, ShapeError> {
-        let mut points = Vec::new();
+        let ControlPoints { points, curves } =
+            world_control_points("bsplinecurve", curves, 4, to_world)?;
         let mut segments = Vec::new();
-        for curve in curves {
-            if curve.len() < 4 {
-                return Err(ShapeError(format!(
-                    "bsplinecurve: a curve needs at least four control points, one has {}",
-                    curve.len()
-                )));
-            }
-            let first = points.len() as u32;
-            for (k, c) in curve.iter().enumerate() {
-                let p = to_world.point(c.xyz());
-                if !(p.is_finite() && c.w >= 0.0 && c.w.is_finite()) {
-                    return Err(ShapeError(format!(
-                        "bsplinecurve: control point {} is not finite or has a negative radius",
-                        first as usize + k
-                    )));
-                }
-                points.push(p.extend(c.w));
-            }
-            let n = curve.len() as u32 - 3;
+        for (first, len) in curves {
+            let n = len - 3;
             segments.extend((0..n).map(|j| (first + j, j + 1 == n)));
         }
         if segments.is_empty() {
@@ -126,8 +113,7 @@ impl BSplineCurve {
             for j in 0..k {
                 let (u0, u1) = (j as f32 / k as f32, (j + 1) as f32 / k as f32);
                 let (a, b) = (curve.eval(s, u0).0, curve.eval(s, u1).0);
-                let slant = (a.xyz().distance_squared(b.xyz()) + (b.w - a.w).powi(2)).sqrt();
-                curve.area += PI * (a.w + b.w) * slant;
+                curve.area += frustum_area(a, b);
                 let place = if last && j + 1 == k { PiecePlace::Last } else { PiecePlace::Inner };
                 curve.pieces.push(Piece { a, b, segment: s, u0, u1, place });
             }
@@ -203,22 +189,14 @@ impl BSplineCurve {
     }
 
     pub fn bounds(&self) -> Aabb {
-        let mut bb = self.prim_bounds(0);
-        for prim in 1..self.piece_count_total() {
-            let b = self.prim_bounds(prim);
-            bb.grow(b.min);
-            bb.grow(b.max);
-        }
-        bb
+        (1..self.piece_count_total())
+            .fold(self.prim_bounds(0), |bb, p| bb.union(&self.prim_bounds(p)))
     }
 
     /// The box around both end spheres of piece `prim`, widened by the chord tolerance.
     pub fn prim_bounds(&self, prim: u32) -> Aabb {
         let Piece { a, b, .. } = self.pieces[prim as usize];
-        let mut bb = Aabb::new(a.xyz() - a.w, a.xyz() + a.w);
-        bb.grow(b.xyz() - b.w);
-        bb.grow(b.xyz() + b.w);
-        bb
+        chord_bounds(a, b)
     }
 
     pub fn surface_area(&self) -> f32 {
@@ -238,20 +216,8 @@ impl BSplineCurve {
                 EndCap::UpTo(b.xyz().as_dvec3(), b.w as f64)
             }
         };
-        let (t, v) = intersect_round_segment(
-            piece.a.xyz().as_dvec3(),
-            piece.a.w as f64,
-            piece.b.xyz().as_dvec3(),
-            piece.b.w as f64,
-            Caps { begin: false, end },
-            ray.o.as_dvec3(),
-            ray.d.as_dvec3(),
-        )?;
-        let t = t as f32;
-        if !(t > 0.0 && t < ray.t_max) {
-            return None;
-        }
-        Some((t, Vec2::new(piece.u0 + v as f32 * (piece.u1 - piece.u0), 0.0)))
+        let (t, v) = intersect_chord(piece.a, piece.b, Caps { begin: false, end }, ray)?;
+        Some((t, Vec2::new(piece.u0 + v * (piece.u1 - piece.u0), 0.0)))
     }
 
     pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
@@ -268,11 +234,7 @@ impl BSplineCurve {
             .or_else(|| radial.try_normalize())
             .unwrap_or_else(|| Frame::from_normal(axis).s);
         let around = radial.normalize_or_zero();
-        let (v_rot, v_rad) = local_frame(axis);
-        let mut a = crate::geometry::trig::atan2(v_rot.dot(around), v_rad.dot(around)) * (0.5 / PI);
-        if a < 0.0 {
-            a += 1.0;
-        }
+        let a = turns_about(axis, around);
         let count = self.segments.len() as f32;
         let uv = Vec2::new(a, (u.clamp(0.0, 1.0) + s as f32) / count);
         // ∂p/∂(around) and ∂p/∂(along)

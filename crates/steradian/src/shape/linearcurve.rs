@@ -52,24 +52,11 @@ pub struct LinearCurve {
 impl LinearCurve {
     /// The curves (control points x, y, z, radius before `to_world`, at least two each).
     pub fn new(curves: &[Vec<Vec4>], to_world: &Transform) -> Result<LinearCurve, ShapeError> {
-        let mut points = Vec::new();
+        let ControlPoints { points, curves } =
+            world_control_points("linearcurve", curves, 2, to_world)?;
         let mut segments = Vec::new();
-        for curve in curves {
-            if curve.len() < 2 {
-                return Err(ShapeError("linearcurve: a curve needs two control points".into()));
-            }
-            let first = points.len() as u32;
-            for (k, c) in curve.iter().enumerate() {
-                let p = to_world.point(c.xyz());
-                if !(p.is_finite() && c.w >= 0.0 && c.w.is_finite()) {
-                    return Err(ShapeError(format!(
-                        "linearcurve: control point {} is not finite or has a negative radius",
-                        first as usize + k
-                    )));
-                }
-                points.push(p.extend(c.w));
-            }
-            let n = curve.len() as u32 - 1;
+        for (first, len) in curves {
+            let n = len - 1;
             segments.extend(
                 (0..n).map(|j| (first + j, SegmentEnds { first: j == 0, last: j + 1 == n })),
             );
@@ -79,11 +66,7 @@ impl LinearCurve {
         }
         let area = segments
             .iter()
-            .map(|&(i, _)| {
-                let (a, b) = (points[i as usize], points[i as usize + 1]);
-                let slant = (a.xyz().distance_squared(b.xyz()) + (b.w - a.w) * (b.w - a.w)).sqrt();
-                PI * (a.w + b.w) * slant
-            })
+            .map(|&(i, _)| frustum_area(points[i as usize], points[i as usize + 1]))
             .sum();
         Ok(LinearCurve { points, segments, area })
     }
@@ -101,22 +84,13 @@ impl LinearCurve {
     }
 
     pub fn bounds(&self) -> Aabb {
-        let mut bb = self.prim_bounds(0);
-        for prim in 1..self.segment_count() {
-            let b = self.prim_bounds(prim);
-            bb.grow(b.min);
-            bb.grow(b.max);
-        }
-        bb
+        (1..self.segment_count()).fold(self.prim_bounds(0), |bb, p| bb.union(&self.prim_bounds(p)))
     }
 
     /// The box around both end spheres of segment `prim`.
     pub fn prim_bounds(&self, prim: u32) -> Aabb {
         let (a, b) = self.ends(prim);
-        let mut bb = Aabb::new(a.xyz() - a.w, a.xyz() + a.w);
-        bb.grow(b.xyz() - b.w);
-        bb.grow(b.xyz() + b.w);
-        bb
+        chord_bounds(a, b)
     }
 
     pub fn surface_area(&self) -> f32 {
@@ -138,17 +112,8 @@ impl LinearCurve {
                 EndCap::UpTo(next.xyz().as_dvec3(), next.w as f64)
             },
         };
-        let (t, v) = intersect_round_segment(
-            a.xyz().as_dvec3(),
-            a.w as f64,
-            b.xyz().as_dvec3(),
-            b.w as f64,
-            caps,
-            ray.o.as_dvec3(),
-            ray.d.as_dvec3(),
-        )?;
-        let t = t as f32;
-        (t > 0.0 && t < ray.t_max).then_some((t, Vec2::new(v as f32, 0.0)))
+        let (t, v) = intersect_chord(a, b, caps, ray)?;
+        Some((t, Vec2::new(v, 0.0)))
     }
 
     pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {
@@ -161,11 +126,7 @@ impl LinearCurve {
         let radial = p - c;
         // a hit on the centre line itself (a zero radius) has no normal of its own
         let n = radial.try_normalize().unwrap_or_else(|| Frame::from_normal(axis).s);
-        let (v_rot, v_rad) = local_frame(axis);
-        let mut u = crate::geometry::trig::atan2(v_rot.dot(n), v_rad.dot(n)) * (0.5 / PI);
-        if u < 0.0 {
-            u += 1.0;
-        }
+        let u = turns_about(axis, n);
         let count = self.segment_count() as f32;
         let uv = Vec2::new(u, (v + hit.prim as f32) / count);
         let dpdu = 2.0 * PI * axis.cross(radial);
@@ -224,16 +185,95 @@ pub(super) enum EndCap {
     UpTo(DVec3, f64),
 }
 
-/// Mitsuba's frame about a segment's axis: the rotation axis is +z projected off the segment
-/// (+y where the segment is parallel to z), the radial axis their cross product.
-pub(super) fn local_frame(axis: Vec3) -> (Vec3, Vec3) {
+/// Control points in world space and where each curve's lie among them.
+pub(super) struct ControlPoints {
+    /// Position (m) and radius (m) of every point.
+    pub points: Vec<Vec4>,
+    /// Each curve's first point and point count.
+    pub curves: Vec<(u32, u32)>,
+}
+
+/// The curves' control points moved by `to_world` (radii kept), checked as both curve
+/// shapes need them (finite, radii ≥ 0, at least `min_points` per curve).
+pub(super) fn world_control_points(
+    plugin: &str,
+    curves: &[Vec<Vec4>],
+    min_points: usize,
+    to_world: &Transform,
+) -> Result<ControlPoints, ShapeError> {
+    let mut points = Vec::new();
+    let mut starts = Vec::with_capacity(curves.len());
+    for curve in curves {
+        if curve.len() < min_points {
+            return Err(ShapeError(format!(
+                "{plugin}: a curve needs at least {min_points} control points, one has {}",
+                curve.len()
+            )));
+        }
+        let first = points.len() as u32;
+        for (k, c) in curve.iter().enumerate() {
+            let p = to_world.point(c.xyz());
+            if !(p.is_finite() && c.w >= 0.0 && c.w.is_finite()) {
+                return Err(ShapeError(format!(
+                    "{plugin}: control point {} is not finite or has a negative radius",
+                    first as usize + k
+                )));
+            }
+            points.push(p.extend(c.w));
+        }
+        starts.push((first, curve.len() as u32));
+    }
+    Ok(ControlPoints { points, curves: starts })
+}
+
+/// The box around the spheres (centre, radius) `a` and `b`.
+pub(super) fn chord_bounds(a: Vec4, b: Vec4) -> Aabb {
+    let mut bb = Aabb::new(a.xyz() - a.w, a.xyz() + a.w);
+    bb.grow(b.xyz() - b.w);
+    bb.grow(b.xyz() + b.w);
+    bb
+}
+
+/// The lateral area of the frustum between the circles (centre, radius) `a` and `b`, m².
+pub(super) fn frustum_area(a: Vec4, b: Vec4) -> f32 {
+    let slant = (a.xyz().distance_squared(b.xyz()) + (b.w - a.w) * (b.w - a.w)).sqrt();
+    PI * (a.w + b.w) * slant
+}
+
+/// [`intersect_round_segment`] for the spheres (centre, radius) `a` and `b` and a ray: the hit
+/// `(t, v)` with 0 < t < `ray.t_max`.
+#[inline]
+pub(super) fn intersect_chord(a: Vec4, b: Vec4, caps: Caps, ray: &Ray) -> Option<(f32, f32)> {
+    let (t, v) = intersect_round_segment(
+        a.xyz().as_dvec3(),
+        a.w as f64,
+        b.xyz().as_dvec3(),
+        b.w as f64,
+        caps,
+        ray.o.as_dvec3(),
+        ray.d.as_dvec3(),
+    )?;
+    let t = t as f32;
+    (t > 0.0 && t < ray.t_max).then_some((t, v as f32))
+}
+
+/// The angle of `dir` about `axis`, in turns ∈ [0, 1), in Mitsuba's frame about a curve's
+/// axis: the rotation axis is +z projected off the axis (+y where the axis is parallel to z),
+/// the radial axis their cross product.
+pub(super) fn turns_about(axis: Vec3, dir: Vec3) -> f32 {
     let guide = Vec3::Z;
     let v_rot = if guide.dot(axis).abs() == 1.0 {
         Vec3::Y
     } else {
         (guide - axis * axis.dot(guide)).normalize()
     };
-    (v_rot, v_rot.cross(axis))
+    let v_rad = v_rot.cross(axis);
+    let u = crate::geometry::trig::atan2(v_rot.dot(dir), v_rad.dot(dir)) * (0.5 / PI);
+    if u < 0.0 {
+        u + 1.0
+    } else {
+        u
+    }
 }
 
 /// The nearest front-facing hit (t > 0) of the ray o + t·d with the convex hull of the spheres
@@ -241,7 +281,7 @@ pub(super) fn local_frame(axis: Vec3) -> (Vec3, Vec3) {
 /// on the caps). The cone touching both spheres is parametrised by
 /// y = (h − p0)·(p1 − p0) + r0·(r1 − r0) over h on it: y = 0 where it touches the first sphere,
 /// y = g = |p1 − p0|² − (r1 − r0)² where it touches the second, and v = y / g.
-pub(super) fn intersect_round_segment(
+fn intersect_round_segment(
     p0: DVec3,
     r0: f64,
     p1: DVec3,

@@ -17,7 +17,7 @@ use common::{
     METER_FILM,
 };
 use steradian::radiometry;
-use steradian::render::Job;
+use steradian::render::{render, Job, RenderOptions};
 
 const SPP: u32 = 64;
 
@@ -68,6 +68,25 @@ fn lights_and_camera_inside_a_fog() {
     matches_mitsuba("volpath-fog");
     // the camera outside the fog
     mutant_fails("volpath-fog", "<ref id=\"fog\"/>", "");
+}
+
+/// A light may name the medium it sits in, as any Mitsuba endpoint may; like Mitsuba's
+/// `volpath`, steradian attenuates light along the path whatever the light names, so the
+/// image is the same (one medium at most).
+#[test]
+fn a_light_naming_its_medium_renders_the_same() {
+    let named = r#"<emitter type="area"><ref id="fog"/>"#;
+    let job = reference_scene_with("volpath-fog.xml", r#"<emitter type="area">"#, named);
+    let plain = load("volpath-fog");
+    let opts = RenderOptions { spp: Some(8), seed: Some(3), ..Default::default() };
+    let image = |job: &Job| render(job, &opts).unwrap().film().develop().data;
+    assert_eq!(image(&job), image(&plain));
+    let two = format!(r#"{named}<medium type="homogeneous"/>"#);
+    let xml = std::fs::read_to_string(data("volpath-fog.xml"))
+        .unwrap()
+        .replace(r#"<emitter type="area">"#, &two);
+    let e = common::load_error(&xml, "two-media.xml");
+    assert!(e.contains("only one medium can be named per emitter"), "{e}");
 }
 
 #[test]

@@ -324,8 +324,6 @@ impl Scene {
         &self.bsdfs[self.binding(si).bsdf as usize]
     }
 
-    /// The area light of the shape hit, if any.
-    #[inline]
     /// The camera ray `ray` continued past the emitting surfaces it meets first (area lights,
     /// luminous openings), as Mitsuba 3's `hide_emitters` has camera rays pass through the
     /// lights they would show, to what lies behind them (Mitsuba 3.9.1 `path`, `volpath`,
@@ -354,6 +352,8 @@ impl Scene {
         ray
     }
 
+    /// The area light of the shape hit, if any.
+    #[inline]
     pub fn area_emitter(&self, si: &SurfaceInteraction) -> Option<(u32, &Emitter)> {
         let e = self.binding(si).emitter?;
         Some((e, &self.emitters[e as usize]))

@@ -70,7 +70,6 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
         ("shape", "sdfgrid"),
         ("bsdf", "measured"),
         ("bsdf", "polarizer"),
-        ("emitter", "sunsky"),
         ("emitter", "timed_sunsky"),
         ("integrator", "stokes"),
     ] {

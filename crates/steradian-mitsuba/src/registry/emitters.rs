@@ -1,5 +1,5 @@
 //! Emitter plugins: `area` and `directionalarea` (attached to a shape), `point`, `spot`,
-//! `directional`, `constant`, `envmap`, `projector`, and steradian's own `luminaire` (a
+//! `directional`, `constant`, `envmap`, `projector`, `sunsky`, and steradian's own `luminaire` (a
 //! photometric file) and `ciesky` (CIE standard skies).
 
 use steradian::emitter::{
@@ -153,7 +153,87 @@ pub(super) const EMITTERS: &Plugins<BuildEmitter> = &[
     ("luminaire", build_luminaire),
     ("ciesky", build_ciesky),
     ("sun", sun),
+    ("sunsky", build_sunsky),
 ];
+
+/// Mitsuba's `sunsky` (parameters and defaults: `steradian::emitter::SunSky`).
+fn build_sunsky(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
+    use steradian::emitter::{LocationTime, SunModel, SunPosition, SunSky, SunSkyParams};
+    let p = &node.props;
+    const WHEN: [&str; 9] =
+        ["latitude", "longitude", "timezone", "year", "month", "day", "hour", "minute", "second"];
+    let sun = match p.get_vector("sun_direction")? {
+        Some(d) => {
+            if let Some(name) = WHEN.iter().find(|n| p.contains(n)) {
+                return Err(LoadError::at(
+                    p.position(name).unwrap_or(&node.pos),
+                    format!(
+                        "{}: '{name}' cannot be given with 'sun_direction' (the sun is either \
+                         placed by direction or by location and time)",
+                        node.desc()
+                    ),
+                ));
+            }
+            SunPosition::Direction(d)
+        }
+        None => {
+            let d = LocationTime::default();
+            let int = |name: &str, default: i32| -> Result<i32, LoadError> {
+                match p.get_int(name)? {
+                    None => Ok(default),
+                    Some(v) => i32::try_from(v).map_err(|_| {
+                        at_param_named(node, name, format!("{name} {v} is out of range"))
+                    }),
+                }
+            };
+            let float = |name: &str, default: f32| -> Result<f32, LoadError> {
+                Ok(p.get_float(name)?.unwrap_or(default))
+            };
+            SunPosition::At(LocationTime {
+                latitude: float("latitude", d.latitude)?,
+                longitude: float("longitude", d.longitude)?,
+                timezone: float("timezone", d.timezone)?,
+                year: int("year", d.year)?,
+                month: int("month", d.month)?,
+                day: int("day", d.day)?,
+                hour: float("hour", d.hour)?,
+                minute: float("minute", d.minute)?,
+                second: float("second", d.second)?,
+            })
+        }
+    };
+    let defaults = SunSkyParams::default();
+    let params = SunSkyParams {
+        sun,
+        turbidity: p.get_float("turbidity")?.unwrap_or(defaults.turbidity),
+        albedo: p.get_spectrum("albedo")?.unwrap_or(defaults.albedo),
+        sun_scale: p.get_float("sun_scale")?.unwrap_or(defaults.sun_scale),
+        sky_scale: p.get_float("sky_scale")?.unwrap_or(defaults.sky_scale),
+        sun_aperture: p.get_float("sun_aperture")?.unwrap_or(defaults.sun_aperture),
+        model: match p.get_bool("complex_sun")? {
+            Some(true) => SunModel::LimbDarkened,
+            _ => SunModel::Uniform,
+        },
+    };
+    let to_world = p.get_transform("to_world")?.unwrap_or_default();
+    let sky = SunSky::new(&params, &to_world).map_err(at_param(node))?;
+    if !sky.sun_is_up() {
+        b.warn(crate::error::LoadWarning::at(
+            &node.pos,
+            format!(
+                "{}: the sun is below the horizon at this time and place: the sky is black (as in \
+                 Mitsuba)",
+                node.desc()
+            ),
+        ));
+    }
+    Ok(Emitter::SunSky(Box::new(sky)))
+}
+
+/// An error at property `name` of `node` (or at the node).
+fn at_param_named(node: &PluginNode, name: &str, msg: String) -> LoadError {
+    LoadError::at(node.props.position(name).unwrap_or(&node.pos), format!("{}: {msg}", node.desc()))
+}
 
 /// steradian's `ciesky` (parameters and defaults: `steradian::emitter::cie_sky`).
 fn build_ciesky(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {

@@ -230,7 +230,7 @@ pub(crate) type Plugins<F> = [(&'static str, F)];
 /// plugins stay here for good (steradian renders RGB); the others are missing features.
 pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("bsdf", &["measured", "measured_polarized", "polarizer", "retarder"]),
-    ("emitter", &["sunsky", "timed_sunsky"]),
+    ("emitter", &["timed_sunsky"]),
     ("shape", &["sdfgrid", "ellipsoids", "ellipsoidsmesh"]),
     ("film", &["specfilm"]),
     ("phase", &["sggx"]),

@@ -101,6 +101,11 @@ impl Emitter {
                 let (ray, area) = from_infinity(-s.wi, center, radius, u_pos);
                 EmittedRay { ray, weight: s.weight * area }
             }
+            Emitter::SunSky(e) => {
+                let s = e.sample_direction(u_dir)?;
+                let (ray, area) = from_infinity(-s.wi, center, radius, u_pos);
+                EmittedRay { ray, weight: s.weight * area }
+            }
             Emitter::LuminousOpening(e) => {
                 let ps = shapes[e.shape as usize].sample_position(u_pos);
                 let (d, weight) = e.sample_emission(ps.n, ps.pdf_area, u_dir)?;

@@ -32,6 +32,7 @@ mod point;
 mod projector;
 mod spot;
 mod sun;
+mod sunsky;
 
 pub use area::AreaLight;
 pub use ciesky::{cie_sky, horizontal_illuminance, SkyLevel, SkyModel};
@@ -47,6 +48,7 @@ pub use point::PointLight;
 pub use projector::Projector;
 pub use spot::SpotLight;
 pub use sun::Sun;
+pub use sunsky::{LocationTime, SunModel, SunPosition, SunSky, SunSkyParams};
 
 use glam::{Vec2, Vec3};
 
@@ -87,6 +89,9 @@ pub enum Emitter {
     Directional(DirectionalLight),
     Constant(ConstantEnvironment),
     EnvMap(EnvironmentMap),
+    /// Mitsuba's `sunsky`: the Hosek–Wilkie sky and sun, an environment (boxed: its model
+    /// takes 544 bytes).
+    SunSky(Box<SunSky>),
     Projector(Projector),
     Luminaire(Luminaire),
     /// The solar disk (steradian's own), at infinity beside the environment.
@@ -107,6 +112,7 @@ impl Emitter {
             Emitter::Directional(e) => e.sample_direction(p),
             Emitter::Constant(e) => e.sample_direction(p, u),
             Emitter::EnvMap(e) => e.sample_direction(u),
+            Emitter::SunSky(e) => e.sample_direction(u),
             Emitter::Projector(e) => e.sample_direction(p),
             Emitter::Sun(e) => e.sample_direction(u),
             Emitter::LuminousOpening(e) => e.sample_direction(shapes, p, u),
@@ -121,6 +127,7 @@ impl Emitter {
             Emitter::Area(e) => e.pdf_direction(shapes, p, wi, light),
             Emitter::Constant(e) => e.pdf_direction(wi),
             Emitter::EnvMap(e) => e.pdf_direction(wi),
+            Emitter::SunSky(e) => e.pdf_direction(wi),
             Emitter::Sun(e) => e.radiance_and_pdf(wi).1,
             Emitter::LuminousOpening(e) => e.pdf_direction(shapes, p, wi, light),
             Emitter::Point(_)
@@ -140,6 +147,7 @@ impl Emitter {
             Emitter::Area(e) => e.radiance(wo, n, uv),
             Emitter::Constant(e) => e.radiance(),
             Emitter::EnvMap(e) => e.radiance(-wo),
+            Emitter::SunSky(e) => e.radiance(-wo),
             Emitter::Sun(e) => e.radiance_and_pdf(-wo).0,
             Emitter::LuminousOpening(e) => e.radiance(wo, n),
             Emitter::Point(_)
@@ -158,6 +166,7 @@ impl Emitter {
         match self {
             Emitter::Constant(e) => (e.radiance(), e.pdf_direction(d)),
             Emitter::EnvMap(e) => e.radiance_and_pdf(d),
+            Emitter::SunSky(e) => e.radiance_and_pdf(d),
             Emitter::Sun(e) => e.radiance_and_pdf(d),
             Emitter::Area(_)
             | Emitter::LuminousOpening(_)
@@ -176,6 +185,7 @@ impl Emitter {
             | Emitter::LuminousOpening(_)
             | Emitter::Constant(_)
             | Emitter::EnvMap(_)
+            | Emitter::SunSky(_)
             | Emitter::Sun(_) => Support::Extended,
             Emitter::Point(_)
             | Emitter::Luminaire(_)
@@ -201,7 +211,10 @@ impl Emitter {
             // uniform in a small cone: the weight L·Ω·cos is bounded
             Emitter::Sun(_) => true,
             // I(ω)/(A cos θ) grows towards grazing angles where the table does not vanish
-            Emitter::Constant(_) | Emitter::EnvMap(_) | Emitter::LuminousOpening(_) => false,
+            Emitter::Constant(_)
+            | Emitter::EnvMap(_)
+            | Emitter::SunSky(_)
+            | Emitter::LuminousOpening(_) => false,
         }
     }
 
@@ -209,7 +222,7 @@ impl Emitter {
     /// rays escaping the scene see. The sun, at infinity too, is not one: it goes beside it.
     #[inline]
     pub fn is_environment(&self) -> bool {
-        matches!(self, Emitter::Constant(_) | Emitter::EnvMap(_))
+        matches!(self, Emitter::Constant(_) | Emitter::EnvMap(_) | Emitter::SunSky(_))
     }
 
     /// Total emitted flux Φ in W (per channel); for lights at infinity, the flux through the
@@ -224,6 +237,7 @@ impl Emitter {
             Emitter::Directional(e) => e.irradiance * PI * scene_radius * scene_radius,
             Emitter::Constant(e) => e.radiance * 4.0 * PI * PI * scene_radius * scene_radius,
             Emitter::EnvMap(e) => e.integral() * PI * scene_radius * scene_radius,
+            Emitter::SunSky(e) => e.integral() * PI * scene_radius * scene_radius,
             Emitter::Projector(e) => e.flux(),
             Emitter::Sun(e) => e.irradiance * PI * scene_radius * scene_radius,
             Emitter::LuminousOpening(e) => e.flux(),

@@ -161,12 +161,15 @@ pub enum SpectrumRole {
 
 impl SpectrumRole {
     /// The role of property `name` of an object; `within_emitter` is true for direct
-    /// properties of an `<emitter>` (Mitsuba's `within_emitter`).
+    /// properties of an `<emitter>` (Mitsuba's `within_emitter`). `sunsky`'s ground `albedo`
+    /// is a reflectance although it sits in an emitter: Mitsuba 3.9.1 reads it as one
+    /// (400:0.1, 700:0.6 gives (0.501608, 0.338203, 0.167512) there, as for a `diffuse`
+    /// reflectance).
     pub fn of(name: &str, within_emitter: bool) -> Self {
         let unbounded = matches!(name, "eta" | "k" | "int_ior" | "ext_ior");
         if unbounded {
             SpectrumRole::Unbounded
-        } else if within_emitter {
+        } else if within_emitter && name != "albedo" {
             SpectrumRole::Emission
         } else {
             SpectrumRole::Reflectance
@@ -236,5 +239,15 @@ mod tests {
         // Outside the given range the spectrum contributes nothing.
         let c = wavelength_list_to_rgb(&[200.0, 300.0], &[1.0, 1.0], SpectrumRole::Unbounded);
         assert_eq!(c, Vec3::ZERO);
+    }
+
+    /// `sunsky`'s `albedo` in an emitter converts as a reflectance, to Mitsuba 3.9.1's values.
+    #[test]
+    fn an_emitters_albedo_is_a_reflectance() {
+        let role = SpectrumRole::of("albedo", true);
+        assert_eq!(role, SpectrumRole::Reflectance);
+        let c = wavelength_list_to_rgb(&[400.0, 700.0], &[0.1, 0.6], role);
+        let mitsuba = Vec3::new(0.501_608, 0.338_203, 0.167_512);
+        assert!((c - mitsuba).abs().max_element() < 2e-5, "{c}");
     }
 }

@@ -2,8 +2,9 @@
 //! as Mitsuba 3.9.1 renders it (its Z-test rule, 4096-spp `llvm_ad_rgb` references): the sun
 //! placed by Mitsuba's default place and date at 15:00 with turbidity 4 and a coloured ground
 //! albedo, and the limb-darkened sun at 17:30 with turbidity 7.5; another hour, turbidity or
-//! ground albedo fails; what Mitsuba refuses in `sunsky` is a located error, and a sun below the horizon is
-//! a warning and a black sky.
+//! ground albedo fails; what Mitsuba refuses in `sunsky` is a located error, and a sun below
+//! the horizon is a warning and a black sky; an irradiance meter reads the quadrature of the
+//! sky and the sun.
 
 mod common;
 

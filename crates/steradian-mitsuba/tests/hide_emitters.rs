@@ -2,7 +2,8 @@
 //! lies behind them, as Mitsuba 3.9.1 does: `reference/hide-emitters.xml` (two stacked lights,
 //! one with a white diffuse BSDF, half over a wall and half over the hidden sky, an `rgba`
 //! film) passes Mitsuba's rule on the image and the alpha channel under `path` and under
-//! `direct`; the lights drawn black where they stand (steradian's rule before) fails.
+//! `direct`; the lights drawn black where they stand (steradian's rule before) fails. So do
+//! `directionalarea` shapes, which add no light but are emitter shapes.
 
 mod common;
 
@@ -71,4 +72,24 @@ fn stopping_at_the_lights_fails() {
             .unwrap_or_else(|e| panic!("{e}"));
     let (image, _) = rendered(&job);
     assert!(!z(&image, "hide-emitters").passes());
+}
+
+/// A `directionalarea` light adds nothing to a path tracer's image, but its disk is an
+/// emitter shape, which hidden camera rays pass through as Mitsuba's do
+/// (`reference/directionalarea-hidden.xml`); drawn as a surface (the scene without
+/// `hide_emitters`), it fails.
+#[test]
+fn hidden_camera_rays_pass_through_a_directionalarea_shape() {
+    let load = |hide: &str| {
+        let d = [("hide".to_string(), hide.to_string())];
+        load_file(&data("directionalarea-hidden.xml"), &d).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let image = |job: &Job| {
+        render(job, &RenderOptions { spp: Some(SPP), seed: Some(1), ..Default::default() })
+            .unwrap_or_else(|e| panic!("{e}"))
+            .film()
+            .develop()
+    };
+    assert!(z(&image(&load("true")), "directionalarea-hidden").passes());
+    assert!(!z(&image(&load("false")), "directionalarea-hidden").passes());
 }

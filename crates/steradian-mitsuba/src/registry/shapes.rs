@@ -23,7 +23,7 @@
 
 use std::sync::Arc;
 
-use steradian::scene::{InstanceDescription, ShapeBinding};
+use steradian::scene::{InstanceDescription, ShapeBinding, SurfaceEmitter};
 use steradian::shape::{self, Shape};
 
 use super::geometry::{ShapeArgs, SHAPES};
@@ -257,5 +257,6 @@ fn build_shape_node(
     }
     node.check_all_used()?;
     let id = node.id.clone().unwrap_or_default();
-    Ok((shape, ShapeBinding { bsdf, emitter, id, interior, exterior }))
+    let surface_emitter = if emitting { SurfaceEmitter::Present } else { SurfaceEmitter::Absent };
+    Ok((shape, ShapeBinding { bsdf, emitter, surface_emitter, id, interior, exterior }))
 }

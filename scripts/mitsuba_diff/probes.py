@@ -27,6 +27,25 @@ mi.Bitmap((_g * 255).astype(np.uint8), pixel_format=mi.Bitmap.PixelFormat.Y).wri
 _rgba = np.stack([_g, 1 - _g, 0.5 * np.ones_like(_g), (_g > 0.5).astype(float)], 2)
 mi.Bitmap((_rgba * 65535).astype(np.uint16), pixel_format=mi.Bitmap.PixelFormat.RGBA).write(f'{WORK}/rgba16.png')
 mi.Bitmap((_rgba * 255).astype(np.uint8), pixel_format=mi.Bitmap.PixelFormat.RGBA).write(f'{WORK}/rgba8.png')
+def _uv_sphere(path, nu=12, nv=6, outward=False):
+    # a coarse sphere with vertex normals (smooth shading), as exporters write emissive spheres
+    v, n, f = [], [], []
+    for j in range(nv + 1):
+        th = np.pi * j / nv
+        for i in range(nu):
+            ph = 2 * np.pi * i / nu
+            d = (np.sin(th) * np.cos(ph), np.cos(th), np.sin(th) * np.sin(ph))
+            v.append(d); n.append(d)
+    for j in range(nv):
+        for i in range(nu):
+            a, b = j * nu + i, j * nu + (i + 1) % nu
+            c, e = a + nu, b + nu
+            f += [(a, b, c), (b, e, c)] if outward else [(a, c, b), (b, c, e)]
+    with open(path, 'w') as out:
+        out.write(''.join('v %f %f %f\n' % p for p in v) + ''.join('vn %f %f %f\n' % p for p in n))
+        out.write(''.join('f %d//%d %d//%d %d//%d\n' % (a + 1, a + 1, b + 1, b + 1, c + 1, c + 1) for a, b, c in f))
+_uv_sphere(f'{WORK}/smooth_sphere.obj')
+_uv_sphere(f'{WORK}/smooth_sphere_out.obj', outward=True)
 tex_leaf = '<texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/></texture>'
 tests = {
  'fov_x_wide': scene(base, sensor=persp('<float name="fov" value="50"/><string name="fov_axis" value="x"/>', w=80, h=40)),
@@ -116,6 +135,16 @@ tests = {
  'tex_rgba16_png': scene(light + sph2 + '<shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate x="1" angle="-90"/></transform><bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="rgba16.png"/></texture></bsdf></shape>'),
  'tex_rgba8_mask': scene(floor + light + '<shape type="rectangle"><transform name="to_world"><rotate y="1" angle="20"/><translate y="1"/></transform><bsdf type="mask"><texture type="bitmap" name="opacity"><string name="filename" value="rgba8.png"/></texture><bsdf type="diffuse"><rgb name="reflectance" value="0.8,0.4,0.1"/></bsdf></bsdf></shape>'),
  'tex_raw_srgb_png': scene(light + sph2 + '<shape type="rectangle"><transform name="to_world"><scale value="3"/><rotate x="1" angle="-90"/></transform><bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/><boolean name="raw" value="true"/><string name="filter_type" value="nearest"/></texture></bsdf></shape>'),
+ 'dielectric_bubble': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="dielectric"><float name="int_ior" value="1.0"/><float name="ext_ior" value="1.33"/></bsdf></shape>'),
+ 'conductor_spectra': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="roughconductor"><float name="alpha" value="0.1"/><spectrum name="eta" value="400:1.3, 550:0.5, 700:0.2"/><spectrum name="k" value="400:1.9, 550:2.6, 700:4.0"/></bsdf></shape>'),
+ 'plastic_named_ior': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="roughplastic"><string name="int_ior" value="polypropylene"/><string name="ext_ior" value="water"/><rgb name="diffuse_reflectance" value="0.2,0.5,0.7"/><string name="distribution" value="ggx"/><float name="alpha" value="0.12"/></bsdf></shape>'),
+ 'obj_light_shading_normals': scene(floor + sph2 + '<shape type="obj"><string name="filename" value="tri_n.obj"/><transform name="to_world"><translate z="0.5"/></transform><emitter type="area"><rgb name="radiance" value="4"/></emitter></shape><emitter type="constant"><rgb name="radiance" value="0.1"/></emitter>'),
+ 'blend_roughdielectrics': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="blendbsdf"><float name="weight" value="0.3"/><bsdf type="roughdielectric"><float name="alpha" value="0.05"/></bsdf><bsdf type="roughdielectric"><float name="alpha" value="0.4"/><float name="int_ior" value="1.7"/></bsdf></bsdf></shape>'),
+ 'principled_aniso_tex': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="principled"><rgb name="base_color" value="0.6,0.6,0.7"/><float name="metallic" value="0.9"/><float name="anisotropic" value="0.8"/><texture type="bitmap" name="roughness"><string name="filename" value="bumps.png"/><boolean name="raw" value="true"/></texture></bsdf></shape>'),
+ 'smooth_mesh_sphere_light': scene(floor + sph2 + '<shape type="obj"><string name="filename" value="smooth_sphere.obj"/><transform name="to_world"><scale value="0.4"/><translate x="0.6" y="1.0" z="0.4"/></transform><emitter type="area"><rgb name="radiance" value="6"/></emitter></shape>'),
+ 'smooth_mesh_sphere_diffuse': scene(floor + light + '<shape type="obj"><string name="filename" value="smooth_sphere.obj"/><transform name="to_world"><scale value="0.6"/><translate x="0.3" y="0.7" z="0.4"/></transform><bsdf type="diffuse"><rgb name="reflectance" value="0.7,0.5,0.2"/></bsdf></shape>'),
+ 'smooth_mesh_sphere_light_out': scene(floor + sph2 + '<shape type="obj"><string name="filename" value="smooth_sphere_out.obj"/><transform name="to_world"><scale value="0.4"/><translate x="0.6" y="1.0" z="0.4"/></transform><emitter type="area"><rgb name="radiance" value="6"/></emitter></shape>'),
+ 'flat_mesh_sphere_light_out': scene(floor + sph2 + '<shape type="obj"><string name="filename" value="smooth_sphere_out.obj"/><boolean name="face_normals" value="true"/><transform name="to_world"><scale value="0.4"/><translate x="0.6" y="1.0" z="0.4"/></transform><emitter type="area"><rgb name="radiance" value="6"/></emitter></shape>'),
  # Mitsuba 3.9.1 renders no blackbody in RGB modes ("not implemented for non-spectral modes")
  # 'blackbody_light': scene(floor + sph + sph2 + light.replace('<rgb name="radiance" value="12"/>', '<spectrum type="blackbody" name="radiance"><float name="temperature" value="3000"/></spectrum>')),
  'spectrum_uniform': scene(floor + sph + sph2 + light.replace('<rgb name="radiance" value="12"/>', '<spectrum name="radiance" value="7"/>')),

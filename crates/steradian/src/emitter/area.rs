@@ -34,6 +34,8 @@ impl AreaLight {
         AreaLight { shape, radiance }
     }
 
+    /// Radiance leaving towards `wo` a point with shading normal `n` (the side the light
+    /// emits to, as Mitsuba's area emitter takes it from the shading frame).
     #[inline]
     pub fn radiance(&self, wo: Vec3, n: Vec3, uv: Vec2) -> Spectrum {
         if n.dot(wo) > 0.0 {
@@ -52,8 +54,14 @@ impl AreaLight {
             UvRequest::Compute
         };
         let ds = shapes[self.shape as usize].sample_direction(p, u, uv)?;
-        // one-sided: the sampled point must face the reference point
-        if ds.n.dot(ds.wi) >= 0.0 || !is_positive(ds.pdf) {
+        // one-sided: the sampled point must face the reference point, by its geometric normal
+        // (as `pdf_direction` decides) and by its shading normal (as `radiance` does: a mesh's
+        // vertex normals may point away from its winding)
+        let shape = &shapes[self.shape as usize];
+        if ds.n.dot(ds.wi) >= 0.0
+            || !is_positive(ds.pdf)
+            || !shape.shading_faces(ds.prim, ds.p, -ds.wi)
+        {
             return None;
         }
         Some(EmitterSample {

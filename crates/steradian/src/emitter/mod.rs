@@ -139,7 +139,7 @@ impl Emitter {
     }
 
     /// Radiance arriving along a ray that ends on this light: for area lights the radiance
-    /// leaving the surface point with normal `n` towards `wo` (away from the light), for
+    /// leaving the surface point with shading normal `n` towards `wo` (away from the light), for
     /// environments the radiance from direction `-wo`.
     #[inline]
     pub fn radiance(&self, wo: Vec3, n: Vec3, uv: Vec2) -> Spectrum {

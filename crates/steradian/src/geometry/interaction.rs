@@ -34,8 +34,10 @@ pub struct SurfaceInteraction {
     /// Geometric normal in the shape's own orientation (outward / front side; not flipped
     /// towards the ray). Unit length.
     pub n: Vec3,
-    /// Shading frame; `sh_frame.n` is the (possibly interpolated) shading normal, oriented on
-    /// the same side as `n`.
+    /// Shading frame; `sh_frame.n` is the (possibly interpolated) shading normal. For meshes
+    /// it is the interpolated vertex normal as the file gives it, which faces away from `n`
+    /// where the file's normals oppose its winding (as in Mitsuba: BSDFs and area lights take
+    /// their sides from it).
     pub sh_frame: Frame,
     /// Surface (texture) coordinates.
     pub uv: Vec2,

@@ -56,7 +56,7 @@ impl DirectIntegrator {
         };
         let mut result = Spectrum::ZERO;
         if let (Some((_, emitter)), true) = (scene.area_emitter(&si), show) {
-            result += emitter.radiance(si.wo, si.n, si.uv);
+            result += emitter.radiance(si.wo, si.sh_frame.n, si.uv);
         }
         let bsdf = scene.bsdf(&si);
         let sp = ShadingPoint::new(&si);
@@ -99,7 +99,7 @@ impl DirectIntegrator {
             let le = match scene.intersect(&next) {
                 Some(hit) => match scene.area_emitter(&hit) {
                     Some((e, emitter)) => {
-                        let le = emitter.radiance(hit.wo, hit.n, hit.uv);
+                        let le = emitter.radiance(hit.wo, hit.sh_frame.n, hit.uv);
                         if le == Spectrum::ZERO {
                             continue;
                         }

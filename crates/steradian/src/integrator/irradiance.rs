@@ -136,7 +136,7 @@ pub fn estimate_irradiance(
     match scene.intersect(&ray) {
         Some(hit) => {
             if let Some((_, emitter)) = scene.area_emitter(&hit) {
-                let le = emitter.radiance(hit.wo, hit.n, hit.uv);
+                let le = emitter.radiance(hit.wo, hit.sh_frame.n, hit.uv);
                 if le != Spectrum::ZERO {
                     let pdf_e = emitter.pdf_direction(&scene.shapes, p, wi, &hit.surface_point());
                     h += le * (PI * power_heuristic(pdf, pdf_e));

@@ -483,7 +483,7 @@ impl PathTracer {
         };
 
         if let (Some((e, emitter)), true) = (scene.area_emitter(&si), show_emitters) {
-            let le = emitter.radiance(si.wo, si.n, si.uv);
+            let le = emitter.radiance(si.wo, si.sh_frame.n, si.uv);
             if le != Spectrum::ZERO {
                 let w = match (st.prev_lobe, self.next_event) {
                     (Lobe::Delta | Lobe::Null, _) | (_, NextEvent::Skipped) => 1.0,

@@ -191,7 +191,7 @@ impl VolPathTracer {
             };
 
             if let (Some((e, emitter)), true) = (scene.area_emitter(&si), show) {
-                let le = emitter.radiance(si.wo, si.n, si.uv);
+                let le = emitter.radiance(si.wo, si.sh_frame.n, si.uv);
                 if le != Spectrum::ZERO {
                     let w = match last {
                         LastScatter::Unsampled => 1.0,

@@ -5,6 +5,10 @@
 //! interpolated vertex normals (the file's, transformed with the inverse transpose, or, when
 //! the file has none and `face_normals` is false, Mitsuba's smooth angle-weighted vertex
 //! normals); with `face_normals` the shading normal is the geometric normal (flat shading).
+//! BSDFs and area lights take their front side from the shading normal, as Mitsuba's do, so
+//! a file whose normals point against its winding still shines outwards
+//! (`tests/mesh_light.rs`); light sampling reaches such a point only where both normals face
+//! the receiver, and BSDF sampling finds the rest.
 //! Surface coordinates are the interpolated vertex uvs when present, else the barycentrics
 //! (b1, b2), as in Mitsuba.
 
@@ -217,6 +221,26 @@ impl Mesh {
         } else {
             n
         }
+    }
+
+    /// Whether point `p` of triangle `prim` faces direction `w` by the interpolated vertex
+    /// normal there (true without vertex normals: the geometric normal then decides).
+    pub fn shading_faces(&self, prim: u32, p: Vec3, w: Vec3) -> bool {
+        let Some(ns) = &self.normals else { return true };
+        let [p0, p1, p2] = self.triangle(prim);
+        let (e1, e2, q) = (p1 - p0, p2 - p0, p - p0);
+        let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+        let (q1, q2) = (q.dot(e1), q.dot(e2));
+        let det = d11 * d22 - d12 * d12;
+        // a degenerate triangle has no interior to interpolate over: the geometric side stands
+        if det.is_nan() || det <= 0.0 {
+            return true;
+        }
+        let b1 = (q1 * d22 - q2 * d12) / det;
+        let b2 = (q2 * d11 - q1 * d12) / det;
+        let [i0, i1, i2] = self.indices[prim as usize];
+        let n = ns[i0 as usize] * (1.0 - b1 - b2) + ns[i1 as usize] * b1 + ns[i2 as usize] * b2;
+        n.dot(w) > 0.0
     }
 
     fn uv_at(&self, prim: u32, b: Vec2) -> Vec2 {

@@ -229,6 +229,23 @@ impl Shape {
         }
     }
 
+    /// Whether point `p` of primitive `prim` faces direction `w` by its shading normal: the
+    /// interpolated vertex normal of a mesh that has them (which may disagree with the
+    /// winding); every other shape's shading normal is its geometric one, which the caller
+    /// has checked already. Area lights emit on this side, as Mitsuba's.
+    #[inline]
+    pub fn shading_faces(&self, prim: u32, p: Vec3, w: Vec3) -> bool {
+        match self {
+            Shape::Mesh(s) => s.shading_faces(prim, p, w),
+            Shape::Rectangle(_)
+            | Shape::Disk(_)
+            | Shape::Sphere(_)
+            | Shape::Cylinder(_)
+            | Shape::LinearCurve(_)
+            | Shape::BSplineCurve(_) => true,
+        }
+    }
+
     /// A point uniformly distributed by area; `pdf_area = 1 / area` (0 for curves, which
     /// cannot be sampled: no caller takes such a sample).
     pub fn sample_position(&self, u: Vec2) -> PositionSample {

@@ -159,30 +159,30 @@ pub(super) const EMITTERS: &Plugins<BuildEmitter> = &[
 /// Mitsuba's `sunsky` (parameters and defaults: `steradian::emitter::SunSky`).
 fn build_sunsky(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadError> {
     use steradian::emitter::{LocationTime, SunModel, SunPosition, SunSky, SunSkyParams};
+    use steradian::param::ParamError;
     let p = &node.props;
     const WHEN: [&str; 9] =
         ["latitude", "longitude", "timezone", "year", "month", "day", "hour", "minute", "second"];
     let sun = match p.get_vector("sun_direction")? {
         Some(d) => {
-            if let Some(name) = WHEN.iter().find(|n| p.contains(n)) {
-                return Err(LoadError::at(
-                    p.position(name).unwrap_or(&node.pos),
+            if let Some(&name) = WHEN.iter().find(|n| p.contains(n)) {
+                return Err(at_param(node)(ParamError::new(
+                    name,
                     format!(
-                        "{}: '{name}' cannot be given with 'sun_direction' (the sun is either \
-                         placed by direction or by location and time)",
-                        node.desc()
+                        "'{name}' cannot be given with 'sun_direction' (the sun is either placed \
+                         by direction or by location and time)"
                     ),
-                ));
+                )));
             }
             SunPosition::Direction(d)
         }
         None => {
             let d = LocationTime::default();
-            let int = |name: &str, default: i32| -> Result<i32, LoadError> {
+            let int = |name: &'static str, default: i32| -> Result<i32, LoadError> {
                 match p.get_int(name)? {
                     None => Ok(default),
                     Some(v) => i32::try_from(v).map_err(|_| {
-                        at_param_named(node, name, format!("{name} {v} is out of range"))
+                        at_param(node)(ParamError::new(name, format!("{name} {v} is out of range")))
                     }),
                 }
             };
@@ -228,11 +228,6 @@ fn build_sunsky(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadEr
         ));
     }
     Ok(Emitter::SunSky(Box::new(sky)))
-}
-
-/// An error at property `name` of `node` (or at the node).
-fn at_param_named(node: &PluginNode, name: &str, msg: String) -> LoadError {
-    LoadError::at(node.props.position(name).unwrap_or(&node.pos), format!("{}: {msg}", node.desc()))
 }
 
 /// steradian's `ciesky` (parameters and defaults: `steradian::emitter::cie_sky`).

@@ -226,21 +226,25 @@ impl Mesh {
     /// Whether point `p` of triangle `prim` faces direction `w` by the interpolated vertex
     /// normal there (true without vertex normals: the geometric normal then decides).
     pub fn shading_faces(&self, prim: u32, p: Vec3, w: Vec3) -> bool {
-        let Some(ns) = &self.normals else { return true };
         let [p0, p1, p2] = self.triangle(prim);
-        let (e1, e2, q) = (p1 - p0, p2 - p0, p - p0);
-        let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
-        let (q1, q2) = (q.dot(e1), q.dot(e2));
-        let det = d11 * d22 - d12 * d12;
+        let (b, det) = plane_barycentrics(p1 - p0, p2 - p0, p - p0);
         // a degenerate triangle has no interior to interpolate over: the geometric side stands
         if det.is_nan() || det <= 0.0 {
             return true;
         }
-        let b1 = (q1 * d22 - q2 * d12) / det;
-        let b2 = (q2 * d11 - q1 * d12) / det;
+        match self.interpolated_normal(prim, 1.0 - b.x - b.y, b.x, b.y) {
+            Some(n) => n.dot(w) > 0.0,
+            None => true,
+        }
+    }
+
+    /// The vertex normals of triangle `prim` weighted by barycentrics (b0, b1, b2), not
+    /// normalised; `None` for a mesh without vertex normals.
+    #[inline(always)]
+    fn interpolated_normal(&self, prim: u32, b0: f32, b1: f32, b2: f32) -> Option<Vec3> {
+        let ns = self.normals.as_ref()?;
         let [i0, i1, i2] = self.indices[prim as usize];
-        let n = ns[i0 as usize] * (1.0 - b1 - b2) + ns[i1 as usize] * b1 + ns[i2 as usize] * b2;
-        n.dot(w) > 0.0
+        Some(ns[i0 as usize] * b0 + ns[i1 as usize] * b1 + ns[i2 as usize] * b2)
     }
 
     fn uv_at(&self, prim: u32, b: Vec2) -> Vec2 {
@@ -288,17 +292,9 @@ impl Mesh {
             }
             None => (e1, e2),
         };
-        let ns = match &self.normals {
-            Some(ns) => {
-                let s = (ns[i0 as usize] * b0 + ns[i1 as usize] * b1 + ns[i2 as usize] * b2)
-                    .normalize_or_zero();
-                if s == Vec3::ZERO {
-                    n
-                } else {
-                    s
-                }
-            }
-            None => n,
+        let ns = match self.interpolated_normal(prim, b0, b1, b2).map(Vec3::normalize_or_zero) {
+            Some(s) if s != Vec3::ZERO => s,
+            _ => n,
         };
         SurfaceInteraction {
             p,
@@ -380,12 +376,7 @@ impl Mesh {
             return None;
         }
         let p = reference + wi * dist;
-        let q = p - p0;
-        let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
-        let (q1, q2) = (q.dot(e1), q.dot(e2));
-        let det = d11 * d22 - d12 * d12;
-        let b = Vec2::new((q1 * d22 - q2 * d12) / det, (q2 * d11 - q1 * d12) / det)
-            .clamp(Vec2::ZERO, Vec2::ONE);
+        let b = plane_barycentrics(e1, e2, p - p0).0.clamp(Vec2::ZERO, Vec2::ONE);
         Some(DirectionSample {
             p,
             n: self.face_normal(prim),
@@ -473,4 +464,15 @@ fn smooth_normals(positions: &[Vec3], indices: &[[u32; 3]]) -> Vec<Vec3> {
         }
     });
     ns
+}
+
+/// Barycentrics (b1, b2) of the point p0 + `q` in the plane of a triangle with edges `e1`,
+/// `e2` from p0 (by least squares: a point off the plane lands on its projection), and the
+/// Gram determinant they divide by (0 for a degenerate triangle).
+#[inline]
+fn plane_barycentrics(e1: Vec3, e2: Vec3, q: Vec3) -> (Vec2, f32) {
+    let (d11, d12, d22) = (e1.dot(e1), e1.dot(e2), e2.dot(e2));
+    let (q1, q2) = (q.dot(e1), q.dot(e2));
+    let det = d11 * d22 - d12 * d12;
+    (Vec2::new((q1 * d22 - q2 * d12) / det, (q2 * d11 - q1 * d12) / det), det)
 }

@@ -570,7 +570,7 @@ impl SunSky {
         l
     }
 
-    /// Density of the sun-cone strategy for a direction with cos to the sun `cos_sun`.
+    /// Density of the sun-cone strategy for a direction in the disk (`in_sun`) or not.
     fn sun_pdf(&self, in_sun: bool) -> f32 {
         if in_sun {
             (1.0 / (2.0 * std::f64::consts::PI * self.one_minus_cos_h)) as f32
@@ -581,7 +581,8 @@ impl SunSky {
 
     /// Radiance arriving from world direction `d` (towards the sky), W/(m²·sr).
     pub fn radiance(&self, d: Vec3) -> Spectrum {
-        self.radiance_and_pdf(d).0
+        let v = (self.to_local * d).normalize_or_zero();
+        self.radiance_local(v, v.dot(self.sun) >= self.cos_h)
     }
 
     /// Radiance from world direction `d` and the density with which
@@ -591,7 +592,12 @@ impl SunSky {
             return (Spectrum::ZERO, 0.0);
         }
         let v = (self.to_local * d).normalize_or_zero();
-        let in_sun = v.dot(self.sun) >= self.cos_h;
+        self.radiance_and_pdf_at(d, v, v.dot(self.sun) >= self.cos_h)
+    }
+
+    /// Radiance and density for world direction `d`, `v` in the sky's frame, in the disk or
+    /// not (`in_sun`, which a sample drawn in the sun's cone decides without a dot product).
+    fn radiance_and_pdf_at(&self, d: Vec3, v: Vec3, in_sun: bool) -> (Spectrum, f32) {
         let l = self.radiance_local(v, in_sun);
         let sky_pdf = self.sky_table.as_ref().map_or(0.0, |t| t.pdf_direction(d));
         let pdf =
@@ -622,10 +628,7 @@ impl SunSky {
         };
         let v = (self.to_local * wi).normalize_or_zero();
         // a direction drawn in the cone counts as in the disk (as Mitsuba decides it once)
-        let in_sun = chose_sun || v.dot(self.sun) >= self.cos_h;
-        let l = self.radiance_local(v, in_sun);
-        let sky_pdf = self.sky_table.as_ref().map_or(0.0, |t| t.pdf_direction(wi));
-        let pdf = w * sky_pdf + (1.0 - w) * self.sun_pdf(in_sun);
+        let (l, pdf) = self.radiance_and_pdf_at(wi, v, chose_sun || v.dot(self.sun) >= self.cos_h);
         if !(pdf > 0.0 && pdf.is_finite()) {
             return None;
         }

@@ -333,20 +333,31 @@ impl Mesh {
             let p = self.positions.first().copied().unwrap_or(Vec3::ZERO);
             return PositionSample { p, n: Vec3::Z, uv: Vec2::ZERO, pdf_area: 0.0 };
         };
-        self.sample_on_triangle(prim, u)
+        let (mut ps, b) = self.sample_on_triangle(prim, u);
+        // Mitsuba's `ps.n`: the interpolated vertex normal where the mesh has them, so that a
+        // mesh light emits, and a meter on a mesh faces, by its shading normal
+        if let Some(ns) = self.interpolated_normal(prim, 1.0 - b.x - b.y, b.x, b.y) {
+            let ns = ns.normalize_or_zero();
+            if ns != Vec3::ZERO {
+                ps.n = ns;
+            }
+        }
+        ps
     }
 
-    /// A uniform point on triangle `prim`, with the whole mesh's area density 1/area.
-    fn sample_on_triangle(&self, prim: u32, u: Vec2) -> PositionSample {
+    /// A uniform point on triangle `prim`, with the whole mesh's area density 1/area and the
+    /// face's normal, and its barycentrics (b1, b2).
+    fn sample_on_triangle(&self, prim: u32, u: Vec2) -> (PositionSample, Vec2) {
         let b = warp::square_to_uniform_triangle(u);
         let [p0, p1, p2] = self.triangle(prim);
         let p = p0 * (1.0 - b.x - b.y) + p1 * b.x + p2 * b.y;
-        PositionSample {
+        let ps = PositionSample {
             p,
             n: self.face_normal(prim),
             uv: self.uv_at(prim, b),
             pdf_area: 1.0 / self.area,
-        }
+        };
+        (ps, b)
     }
 
     /// Triangle `prim` as seen from `reference`, when solid-angle sampling applies there.
@@ -363,7 +374,7 @@ impl Mesh {
     pub fn sample_direction(&self, reference: Vec3, u: Vec2) -> Option<DirectionSample> {
         let (prim, pmf, u) = self.pick_triangle(u)?;
         let Some(st) = self.spherical(reference, prim) else {
-            return direction_from_position(reference, &self.sample_on_triangle(prim, u), prim);
+            return direction_from_position(reference, &self.sample_on_triangle(prim, u).0, prim);
         };
         let wi = st.sample(u);
         // the point where wi meets the triangle's plane, and its barycentrics

@@ -65,7 +65,8 @@ pub enum Shape {
 pub struct PositionSample {
     /// Position, m.
     pub p: Vec3,
-    /// Geometric normal (the shape's own orientation), unit.
+    /// Normal, unit: the shape's own orientation, or on a mesh with vertex normals the
+    /// interpolated shading normal (as Mitsuba's `ps.n`).
     pub n: Vec3,
     /// Surface coordinates.
     pub uv: Vec2,

@@ -47,6 +47,28 @@ def _uv_sphere(path, nu=12, nv=6, outward=False):
 _uv_sphere(f'{WORK}/smooth_sphere.obj')
 _uv_sphere(f'{WORK}/smooth_sphere_out.obj', outward=True)
 tex_leaf = '<texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/></texture>'
+def _wavy_ply(path, n=12):
+    # a binary little-endian PLY grid, z = 0.15 sin(3x) cos(2y), with vertex normals and uv
+    xs = np.linspace(-1, 1, n)
+    v, f = [], []
+    for j, y in enumerate(xs):
+        for i, x in enumerate(xs):
+            z = 0.15 * np.sin(3 * x) * np.cos(2 * y)
+            dzdx, dzdy = 0.45 * np.cos(3 * x) * np.cos(2 * y), -0.3 * np.sin(3 * x) * np.sin(2 * y)
+            nn = np.array([-dzdx, -dzdy, 1.0]); nn /= np.linalg.norm(nn)
+            v.append((x, y, z, *nn, i / (n - 1), j / (n - 1)))
+    for j in range(n - 1):
+        for i in range(n - 1):
+            a = j * n + i
+            f += [(a, a + 1, a + n + 1), (a, a + n + 1, a + n)]
+    head = ('ply\nformat binary_little_endian 1.0\nelement vertex %d\n' % len(v) + ''.join('property float %s\n' % c for c in ('x', 'y', 'z', 'nx', 'ny', 'nz', 'u', 'v'))
+            + 'element face %d\nproperty list uchar int vertex_indices\nend_header\n' % len(f))
+    with open(path, 'wb') as out:
+        out.write(head.encode())
+        out.write(np.array(v, dtype='<f4').tobytes())
+        for t in f:
+            out.write(np.uint8(3).tobytes() + np.array(t, dtype='<i4').tobytes())
+_wavy_ply(f'{WORK}/wavy.ply')
 tests = {
  'fov_x_wide': scene(base, sensor=persp('<float name="fov" value="50"/><string name="fov_axis" value="x"/>', w=80, h=40)),
  'fov_y_tall': scene(base, sensor=persp('<float name="fov" value="50"/><string name="fov_axis" value="y"/>', w=40, h=64)),
@@ -162,6 +184,36 @@ tests = {
  'plastic_tex_spec': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="roughplastic"><float name="alpha" value="0.2"/>' + tex_leaf.replace('"reflectance"', '"diffuse_reflectance"') + '<float name="specular_reflectance" value="0.5"/><float name="int_ior" value="1.9"/></bsdf></shape>'),
  'conductor_eta_k': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="roughconductor"><rgb name="eta" value="0.2,0.9,1.1"/><rgb name="k" value="3.9,2.4,2.2"/><float name="alpha" value="0.1"/><rgb name="specular_reflectance" value="0.8,1,0.9"/></bsdf></shape>'),
  'constant_only_diffuse': scene(floor + sph + sph2 + '<emitter type="constant"/>'),
+ # batch 2: texture filtering and wrapping, nonlinear plastics, two-sided pairs, masks,
+ # named IORs, PLY attributes, thin lens, cropped and filtered films, transformed spheres
+ 'thinlens': scene(base, sensor=persp('<float name="fov" value="40"/><float name="aperture_radius" value="0.08"/><float name="focus_distance" value="4.2"/>').replace('type="perspective"', 'type="thinlens"')),
+ 'bitmap_nearest_clamp': scene(floor.replace('<bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>', '<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/><string name="filter_type" value="nearest"/><string name="wrap_mode" value="clamp"/><transform name="to_uv"><scale value="3"/><translate x="-1" y="-1"/></transform></texture></bsdf>') + sph + light),
+ 'bitmap_mirror': scene(floor.replace('<bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>', '<bsdf type="diffuse"><texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/><string name="wrap_mode" value="mirror"/><transform name="to_uv"><scale value="3"/></transform></texture></bsdf>') + sph + light),
+ 'roughplastic_nonlinear': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="roughplastic"><float name="alpha" value="0.15"/><boolean name="nonlinear" value="true"/><rgb name="diffuse_reflectance" value="0.9,0.6,0.2"/></bsdf></shape>'),
+ 'plastic_nonlinear': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="plastic"><boolean name="nonlinear" value="true"/><rgb name="diffuse_reflectance" value="0.9,0.6,0.2"/></bsdf></shape>'),
+ 'twosided_two_bsdfs': scene(floor + light + '<emitter type="constant"><rgb name="radiance" value="0.3"/></emitter>' + ''.join(f'<shape type="rectangle"><transform name="to_world"><scale value="0.5"/><rotate y="1" angle="{a}"/><translate x="{x}" y="0.8" z="0.5"/></transform><bsdf type="twosided"><bsdf type="diffuse"><rgb name="reflectance" value="0.8,0.2,0.1"/></bsdf><bsdf type="roughconductor"><float name="alpha" value="0.2"/></bsdf></bsdf></shape>' for a, x in ((20, -0.7), (200, 0.7)))),
+ 'mask_float': scene(floor + light + sph + sph2 + '<shape type="rectangle"><transform name="to_world"><scale value="0.8"/><translate x="0.3" y="0.8" z="1.6"/></transform><bsdf type="mask"><float name="opacity" value="0.3"/><bsdf type="diffuse"><rgb name="reflectance" value="0.2,0.8,0.3"/></bsdf></bsdf></shape>'),
+ 'dielectric_spec_scales': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="dielectric"><rgb name="specular_reflectance" value="0.8"/><rgb name="specular_transmittance" value="0.5,0.7,0.9"/></bsdf></shape>'),
+ 'roughdielectric_named_iors': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="roughdielectric"><string name="int_ior" value="bk7"/><string name="ext_ior" value="water"/><float name="alpha" value="0.1"/></bsdf></shape>'),
+ 'thindielectric_named_ior': scene(floor + light + sph2 + '<shape type="rectangle"><transform name="to_world"><scale value="0.8"/><translate x="0.3" y="0.8" z="1.6"/></transform><bsdf type="thindielectric"><string name="int_ior" value="diamond"/></bsdf></shape>'),
+ 'conductor_none': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="conductor"><string name="material" value="none"/></bsdf></shape>'),
+ 'roughconductor_ggx_nosv': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="roughconductor"><string name="material" value="Au"/><float name="alpha" value="0.25"/><boolean name="sample_visible" value="false"/></bsdf></shape>'),
+ 'roughconductor_tex_alpha': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="roughconductor"><texture type="bitmap" name="alpha"><string name="filename" value="bumps.png"/><boolean name="raw" value="true"/></texture></bsdf></shape>'),
+ 'obj_noflip_tex': scene(floor + light + '<shape type="obj"><string name="filename" value="quad.obj"/><boolean name="flip_tex_coords" value="false"/><transform name="to_world"><rotate x="1" angle="70"/><translate y="0.9" z="0.3"/></transform><bsdf type="diffuse">' + tex_leaf + '</bsdf></shape>'),
+ 'ply_binary_uv_normals': scene(light + '<emitter type="constant"><rgb name="radiance" value="0.2"/></emitter><shape type="ply"><string name="filename" value="wavy.ply"/><transform name="to_world"><scale value="1.5"/><rotate x="1" angle="-90"/><translate y="0.3"/></transform><bsdf type="roughplastic"><float name="alpha" value="0.1"/>' + tex_leaf.replace('"reflectance"', '"diffuse_reflectance"') + '</bsdf></shape>'),
+ 'ply_face_normals': scene(light + '<emitter type="constant"><rgb name="radiance" value="0.2"/></emitter><shape type="ply"><string name="filename" value="wavy.ply"/><boolean name="face_normals" value="true"/><transform name="to_world"><scale value="1.5"/><rotate x="1" angle="-90"/><translate y="0.3"/></transform><bsdf type="roughconductor"><float name="alpha" value="0.1"/></bsdf></shape>'),
+ 'crop_gaussian': scene(base, rfilter='<rfilter type="gaussian"><float name="stddev" value="0.8"/></rfilter>', film_extra='<integer name="crop_offset_x" value="10"/><integer name="crop_offset_y" value="8"/><integer name="crop_width" value="40"/><integer name="crop_height" value="30"/>'),
+ 'tent_radius': scene(base, rfilter='<rfilter type="tent"><float name="radius" value="1.5"/></rfilter>'),
+ 'envmap_rot_scale': scene(floor + sph + sph2 + '<emitter type="envmap"><string name="filename" value="sky.exr"/><float name="scale" value="0.05"/><transform name="to_world"><rotate y="1" angle="70"/></transform></emitter>', integrator='<integrator type="path"><integer name="max_depth" value="4"/></integrator>'),
+ 'sphere_center_to_world': scene(floor + light + '<shape type="sphere"><point name="center" x="0.4" y="0" z="0"/><float name="radius" value="0.5"/><transform name="to_world"><rotate z="1" angle="30"/><scale value="1.2"/><translate y="0.6" z="0.3"/></transform><bsdf type="diffuse">' + tex_leaf + '</bsdf></shape>'),
+ 'disk_light_tex': scene(floor + sph + sph2 + '<shape type="disk"><transform name="to_world"><scale value="0.6"/><rotate x="1" angle="90"/><translate x="0.4" y="2.6" z="0.8"/></transform><emitter type="area"><texture type="bitmap" name="radiance"><string name="filename" value="leaf.jpg"/></texture></emitter></shape>'),
+ 'twosided_blend_tex_weight': scene(floor + light + sph2 + '<shape type="rectangle"><transform name="to_world"><scale value="0.8"/><rotate y="1" angle="-25"/><translate x="0.3" y="0.8" z="0.2"/></transform><bsdf type="twosided"><bsdf type="blendbsdf"><texture type="bitmap" name="weight"><string name="filename" value="bumps.png"/><boolean name="raw" value="true"/></texture><bsdf type="diffuse"><rgb name="reflectance" value="0.1,0.3,0.8"/></bsdf><bsdf type="roughconductor"><string name="material" value="Cu"/><float name="alpha" value="0.1"/></bsdf></bsdf></bsdf></shape>'),
+ 'independent_seed': scene(base, sensor=persp('<float name="fov" value="40"/><sampler type="independent"><integer name="seed" value="5"/></sampler>')),
+ 'rr_depth_1': scene(base, integrator='<integrator type="path"><integer name="rr_depth" value="1"/></integrator>'),
+ 'point_position_spectrum': scene(floor + sph + sph2 + '<emitter type="point"><point name="position" x="0.5" y="2.5" z="1"/><spectrum name="intensity" value="400:5, 550:8, 700:10"/></emitter>'),
+ 'obj_flip_normals_smooth': scene(floor + light + '<shape type="obj"><string name="filename" value="smooth_sphere_out.obj"/><boolean name="flip_normals" value="true"/><transform name="to_world"><scale value="0.6"/><translate x="0.3" y="0.7" z="0.4"/></transform><bsdf type="diffuse"><rgb name="reflectance" value="0.7,0.5,0.2"/></bsdf></shape><emitter type="constant"><rgb name="radiance" value="0.2"/></emitter>'),
+ 'instance_nonuniform_smooth': scene(floor + light + '<shape type="shapegroup" id="g"><shape type="obj"><string name="filename" value="smooth_sphere_out.obj"/><bsdf type="roughplastic"><float name="alpha" value="0.1"/><rgb name="diffuse_reflectance" value="0.2,0.5,0.7"/></bsdf></shape></shape>' + ''.join(f'<shape type="instance"><ref id="g"/><transform name="to_world"><scale x="{sx}" y="0.4" z="0.4"/><rotate z="1" angle="{a}"/><translate x="{x}" y="0.6"/></transform></shape>' for sx, a, x in ((0.8, 20, -0.8), (0.3, -40, 0.8)))),
+ 'checkerboard_to_uv': scene(floor.replace('<bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>', '<bsdf type="diffuse"><texture type="checkerboard" name="reflectance"><rgb name="color0" value="0.1,0.2,0.3"/><rgb name="color1" value="0.8,0.7,0.5"/><transform name="to_uv"><scale value="6"/><rotate z="1" angle="20"/></transform></texture></bsdf>') + sph + light),
  'rgba_path_env': scene(floor + sph + sph2 + light, film_extra='<string name="pixel_format" value="rgba"/>'),
 }
 only = sys.argv[1:]

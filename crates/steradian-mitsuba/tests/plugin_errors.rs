@@ -439,6 +439,34 @@ fn area_emitter_at_scene_level() {
     check(&e, 2, 1, &["an 'area' emitter must be nested inside the <shape> that emits"]);
 }
 
+/// An area emitter declared with an id and referenced from a shape is that shape's light
+/// (Mitsuba 3.9.1 renders it so); referenced from two shapes it is an error at the second
+/// reference, as in Mitsuba ("an endpoint can only be attached to a single shape").
+#[test]
+fn area_emitter_referenced_from_shapes() {
+    let light =
+        "<emitter type=\"area\" id=\"e\">\n  <rgb name=\"radiance\" value=\"2\"/>\n</emitter>";
+    let camera = r#"<integrator type="path"/><sensor type="perspective"><film type="hdrfilm"><integer name="width" value="8"/><integer name="height" value="8"/></film></sensor>"#;
+    let sphere = r#"<shape type="sphere"><point name="center" x="0" y="0" z="5"/>"#;
+    let nested = scene(&format!(
+        "{camera}{sphere}<emitter type=\"area\"><rgb name=\"radiance\" value=\"2\"/></emitter></shape>"
+    ));
+    let referenced = scene(&format!("{camera}{light}{sphere}<ref id=\"e\"/></shape>"));
+    let mean = |xml: &str| common::mean_and_error(xml, "scene.xml", 3).0;
+    let (a, b) = (mean(&nested), mean(&referenced));
+    assert!(a > 0.0 && a == b, "nested {a}, referenced {b}");
+
+    let twice = full_scene(&format!(
+        "{light}\n<shape type=\"sphere\">\n  <ref id=\"e\"/>\n</shape>\n<shape type=\"sphere\">\n  <ref id=\"e\"/>\n</shape>"
+    ));
+    check(
+        &err(&twice),
+        11,
+        3,
+        &["is already attached to the shape at bad.xml:8:3", "one shape only"],
+    );
+}
+
 #[test]
 fn spot_beam_wider_than_cutoff() {
     let xml = scene("<emitter type=\"spot\">\n  <float name=\"cutoff_angle\" value=\"20\"/>\n  <float name=\"beam_width\" value=\"30\"/>\n</emitter>");

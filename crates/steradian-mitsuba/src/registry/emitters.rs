@@ -382,7 +382,7 @@ pub(crate) fn build_standalone(
     if node.plugin_type == "area" {
         return Err(LoadError::at(
             &node.pos,
-            "an 'area' emitter must be nested inside the <shape> that emits",
+            "an 'area' emitter must be nested inside the <shape> that emits (or declared with an id and referenced from it)",
         ));
     }
     let emitter = lookup(EMITTERS, node)?(b, node)?;

@@ -42,6 +42,9 @@ pub(crate) struct Builder {
     group_cache: HashMap<*const PluginNode, u32>,
     /// Media already built, by node identity: index into the scene's media.
     medium_cache: HashMap<*const PluginNode, u32>,
+    /// Area emitters attached to a shape so far, by node identity, and where (an emitter
+    /// declared once and referenced from two shapes is an error, as in Mitsuba).
+    pub(crate) attached_emitters: HashMap<*const PluginNode, crate::SourcePos>,
     /// The first sensor's medium and where that sensor is: every sensor must share it.
     sensor_medium: Option<(crate::SourcePos, Option<u32>)>,
     default_bsdf: Option<u32>,
@@ -351,6 +354,7 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
         bsdf_cache: HashMap::new(),
         group_cache: HashMap::new(),
         medium_cache: HashMap::new(),
+        attached_emitters: HashMap::new(),
         sensor_medium: None,
         default_bsdf: None,
         black_bsdf: None,
@@ -365,10 +369,21 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
     let mut integrator_pos = None;
     let mut integrator = None;
     let mut environment_pos = None;
+    // area emitters declared at the scene level with an id and referenced from a shape (as
+    // Mitsuba allows): each is built with the shape that references it
+    let referenced_by_shapes: Vec<*const PluginNode> = root
+        .children
+        .iter()
+        .filter(|c| c.node.tag == ObjectTag::Shape)
+        .flat_map(|c| c.node.children.iter())
+        .filter(|e| e.node.tag == ObjectTag::Emitter && e.ref_pos.is_some())
+        .map(|e| Arc::as_ptr(&e.node))
+        .collect();
     for child in &root.children {
         child.mark_used();
         let node = &child.node;
         match node.tag {
+            ObjectTag::Emitter if referenced_by_shapes.contains(&Arc::as_ptr(node)) => {}
             ObjectTag::Shape => shapes::build(&mut b, node)?,
             ObjectTag::Bsdf => {
                 b.mesh_attributes.replace(AttributeSource::Deferred);

@@ -233,6 +233,18 @@ fn build_shape_node(
     }
     let shape_index = b.desc.shapes.len() as u32;
     // (the emitter's index, whether the shape carries one: `directionalarea` adds none)
+    if let Some(e) = emitter_nodes.first() {
+        if let Some(first) = b.attached_emitters.insert(Arc::as_ptr(&e.node), e.pos().clone()) {
+            return Err(LoadError::at(
+                e.pos(),
+                format!(
+                    "{}: {} is already attached to the shape at {first}; an emitter can be attached to one shape only",
+                    node.desc(),
+                    e.node.desc()
+                ),
+            ));
+        }
+    }
     let (emitter, emitting) = match emitter_nodes.first() {
         Some(e) => match emitters::build_area(b, &e.node, shape_index, &shape)? {
             Some(light) => {

@@ -1,4 +1,6 @@
-//! `area`: a surface that emits light. Attach it to a shape.
+//! `area`: a surface that emits light. Attach it to a shape: nest it in the `<shape>`, or
+//! declare it at the scene level with an `id` and `<ref>` it from one shape (from two, it is
+//! an error, as in Mitsuba).
 //!
 //! | parameter  | type             | default | unit       |
 //! |------------|------------------|---------|------------|
@@ -7,7 +9,7 @@
 //! | `color` | spectrum | 1 (white) | the colour of a photometric light |
 //!
 //! The surface emits a constant radiance L from its **front** side only (the side its normal
-//! points to), as in Mitsuba 3; its flux is Φ = π·L·A. Directions are sampled with the shape's
+//! points to; on a mesh with vertex normals, its shading normal), as in Mitsuba 3; its flux is Φ = π·L·A. Directions are sampled with the shape's
 //! own strategy (solid angle for spheres, area otherwise).
 
 use glam::{Vec2, Vec3};

@@ -9,8 +9,9 @@
 //! | `color` | spectrum | 1 (white) | the colour of a photometric light |
 //!
 //! The surface emits a constant radiance L from its **front** side only (the side its normal
-//! points to; on a mesh with vertex normals, its shading normal), as in Mitsuba 3; its flux is Φ = π·L·A. Directions are sampled with the shape's
-//! own strategy (solid angle for spheres, area otherwise).
+//! points to; on a mesh with vertex normals, its shading normal), as in Mitsuba 3; its flux
+//! is Φ = π·L·A. Directions are sampled with the shape's own strategy (solid angle for
+//! spheres, area otherwise).
 
 use glam::{Vec2, Vec3};
 

@@ -46,6 +46,7 @@ def _uv_sphere(path, nu=12, nv=6, outward=False):
         out.write(''.join('f %d//%d %d//%d %d//%d\n' % (a + 1, a + 1, b + 1, b + 1, c + 1, c + 1) for a, b, c in f))
 _uv_sphere(f'{WORK}/smooth_sphere.obj')
 _uv_sphere(f'{WORK}/smooth_sphere_out.obj', outward=True)
+PT = '<integrator type="ptracer"><integer name="max_depth" value="6"/></integrator>'
 tex_leaf = '<texture type="bitmap" name="reflectance"><string name="filename" value="leaf.jpg"/></texture>'
 def _wavy_ply(path, n=12):
     # a binary little-endian PLY grid, z = 0.15 sin(3x) cos(2y), with vertex normals and uv
@@ -231,6 +232,23 @@ tests = {
  # refused by steradian: Mitsuba 3.9.1 loads it, but its light and BSDF samples disagree
  'mesh_attr_emitter': scene(sph + sph2 + '<shape type="ply"><string name="filename" value="floor.ply"/><transform name="to_world"><scale value="0.5"/><rotate y="1" angle="20"/><translate y="2.2" z="-1"/></transform><emitter type="area"><texture type="mesh_attribute" name="radiance"><string name="name" value="face_color"/></texture></emitter></shape>' + floor),
  'envmap_and_area_light': scene(floor + sph + sph2 + light + '<emitter type="envmap"><string name="filename" value="sky.exr"/><float name="scale" value="0.02"/></emitter>'),
+ # batch 4: the light tracer with environment, spot, textured and glossy lights and surfaces,
+ # rough glass, shading normals; meters on spheres and towards the sky
+ 'ptracer_envmap': scene(floor + sph + sph2 + '<emitter type="envmap"><string name="filename" value="sky.exr"/><float name="scale" value="0.05"/></emitter>', integrator=PT),
+ 'ptracer_spot': scene(floor + sph + sph2 + '<emitter type="spot"><transform name="to_world"><lookat origin="0.5,3,1.5" target="0,0,0" up="0,1,0"/></transform><rgb name="intensity" value="20"/><float name="cutoff_angle" value="30"/></emitter>', integrator=PT),
+ 'ptracer_tex_rect_light': scene(floor + sph + sph2 + light.replace('<rgb name="radiance" value="12"/>', '<texture type="bitmap" name="radiance"><string name="filename" value="leaf.jpg"/></texture>'), integrator=PT),
+ 'ptracer_hide': scene(base, integrator='<integrator type="ptracer"><boolean name="hide_emitters" value="true"/></integrator>'),
+ 'ptracer_depth3': scene(base, integrator='<integrator type="ptracer"><integer name="max_depth" value="3"/></integrator>'),
+ 'ptracer_samples_per_pass': scene(base, integrator='<integrator type="ptracer"><integer name="samples_per_pass" value="64"/></integrator>'),
+ 'ptracer_rough_glass': scene(floor + light + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.6" z="0.5"/><float name="radius" value="0.6"/><bsdf type="roughdielectric"><float name="alpha" value="0.2"/></bsdf></shape>', integrator=PT),
+ 'ptracer_normalmap': scene(floor.replace('<bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>', '<bsdf type="normalmap"><texture type="bitmap" name="normalmap"><string name="filename" value="normals.png"/><boolean name="raw" value="true"/><transform name="to_uv"><scale value="4"/></transform></texture><bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></bsdf>') + sph2 + light, integrator=PT),
+ 'path_normalmap_floor': scene(floor.replace('<bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf>', '<bsdf type="normalmap"><texture type="bitmap" name="normalmap"><string name="filename" value="normals.png"/><boolean name="raw" value="true"/><transform name="to_uv"><scale value="4"/></transform></texture><bsdf type="diffuse"><rgb name="reflectance" value="0.5"/></bsdf></bsdf>') + sph2 + light),
+ 'ptracer_smooth_mesh_diffuse': scene(floor + light + '<shape type="obj"><string name="filename" value="smooth_sphere_out.obj"/><transform name="to_world"><scale value="0.6"/><translate x="0.3" y="0.7" z="0.4"/></transform><bsdf type="roughplastic"><rgb name="diffuse_reflectance" value="0.7,0.5,0.2"/></bsdf></shape>', integrator=PT),
+ 'ptracer_constant_env': scene(floor + sph + sph2 + '<emitter type="constant"><rgb name="radiance" value="0.5"/></emitter>', integrator=PT),
+ 'volpath_envmap_fog_sphere': scene(floor + sph2 + '<shape type="sphere"><point name="center" x="0.5" y="0.8" z="0.3"/><float name="radius" value="0.8"/><bsdf type="null"/><medium type="homogeneous" name="interior"><rgb name="albedo" value="0.8"/><float name="sigma_t" value="1.5"/></medium></shape><emitter type="envmap"><string name="filename" value="sky.exr"/><float name="scale" value="0.05"/></emitter>', integrator='<integrator type="volpath"><integer name="max_depth" value="10"/></integrator>'),
+ 'orthographic_envmap': scene(floor + sph + sph2 + '<emitter type="envmap"><string name="filename" value="sky.exr"/><float name="scale" value="0.05"/></emitter>', sensor='<sensor type="orthographic"><transform name="to_world"><scale x="2.5" y="2.5"/><lookat origin="0, 1.5, 5" target="0, 0.5, 0" up="0, 1, 0"/></transform><film type="hdrfilm"><integer name="width" value="64"/><integer name="height" value="48"/><rfilter type="box"/></film></sensor>'),
+ 'irradiancemeter_sphere': scene(floor + sph + light + '<emitter type="constant"><rgb name="radiance" value="0.2"/></emitter><shape type="sphere"><point name="center" x="-1.2" y="0.5" z="0.3"/><float name="radius" value="0.3"/><sensor type="irradiancemeter"><film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film></sensor></shape>', sensor=' '),
+ 'radiancemeter_sky': scene(floor + sph + '<emitter type="envmap"><string name="filename" value="sky.exr"/><float name="scale" value="0.05"/></emitter>', sensor='<sensor type="radiancemeter"><point name="origin" x="0" y="1" z="0"/><vector name="direction" x="0.3" y="1" z="0.2"/><film type="hdrfilm"><integer name="width" value="1"/><integer name="height" value="1"/><rfilter type="box"/></film></sensor>'),
  'rgba_path_env': scene(floor + sph + sph2 + light, film_extra='<string name="pixel_format" value="rgba"/>'),
 }
 only = sys.argv[1:]

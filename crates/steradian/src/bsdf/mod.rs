@@ -259,6 +259,20 @@ impl Bsdf {
         }
     }
 
+    /// Whether the BSDF bends its own normal (`bumpmap`, `normalmap`, or a wrapper holding
+    /// one): its value then depends on which direction is the viewer's (the flip of invalid
+    /// normals and the shadowing term see the viewer and the light differently), so a light
+    /// path must evaluate it with the viewer's direction as `wo` (`integrator/ptracer.rs`).
+    pub fn bends_normal(&self) -> bool {
+        match self {
+            Bsdf::BumpMap(_) | Bsdf::NormalMap(_) => true,
+            Bsdf::Mask(b) => b.nested.bends_normal(),
+            Bsdf::BlendBsdf(b) => b.bsdf0.bends_normal() || b.bsdf1.bends_normal(),
+            Bsdf::TwoSided(b) => b.front.bends_normal() || b.back.bends_normal(),
+            _ => false,
+        }
+    }
+
     /// True when some lobe has a finite density, so that light sampling can help.
     #[inline]
     pub fn has_smooth_lobe(&self) -> bool {

@@ -124,7 +124,9 @@ impl ParticleTracer {
         } else {
             let bs = bsdf.sample(sp, wl, u1, u2)?;
             if bs.lobe != Lobe::Smooth {
-                return Some(BsdfSample { weight: bs.weight * (bs.eta * bs.eta), ..bs });
+                // a delta or null lobe is reached only through this branch
+                let weight = bs.weight * (bs.eta * bs.eta / (1.0 - DEFENSIVE_FRACTION));
+                return Some(BsdfSample { weight, ..bs });
             }
             (bs.wi, bs.pdf)
         };

@@ -104,7 +104,9 @@ impl ParticleTracer {
     /// own sampling, which, seeing the light's direction as the viewer's, leaves out some
     /// directions the light can go: without it a normal-mapped floor's image was 0.18 % dark
     /// against `path` (z = −12 over 12 seeds) and a bump-mapped one 0.23 % (z = −9); with it,
-    /// z = −0.5 and −0.9).
+    /// z = −0.5 and −0.9). A delta or null lobe (a glass in a blend, a mask's pass-through)
+    /// is reached only through the BSDF's own sampling, whose weight is then divided by that
+    /// branch's probability.
     #[inline]
     fn next_direction(
         &self,

@@ -10,7 +10,8 @@ use std::sync::Arc;
 use steradian::geometry::Transform;
 use steradian::shape::{
     self, read_curves, read_obj, read_ply_with_attributes, BSplineCurve, Cylinder, Disk,
-    LinearCurve, Mesh, MeshData, Rectangle, Shape, ShapeError, Sphere, DEFAULT_FLIP_TEX_COORDS,
+    LinearCurve, Mesh, MeshData, Rectangle, Shape, ShapeError, Sphere, VertexNormals,
+    DEFAULT_FLIP_TEX_COORDS,
 };
 
 use super::{lookup, AttributeSource, Builder, MeshAttributes, Plugins};
@@ -98,7 +99,8 @@ fn obj(s: &ShapeArgs) -> Result<Shape, LoadError> {
     let path = mesh_file(s)?;
     let face_normals = face_normals(s.node)?;
     let flip_tex = s.node.props.get_bool("flip_tex_coords")?.unwrap_or(DEFAULT_FLIP_TEX_COORDS);
-    mesh(s, read_obj(&path, flip_tex), face_normals)
+    let vertex_normals = if face_normals { VertexNormals::Ignore } else { VertexNormals::Read };
+    mesh(s, read_obj(&path, flip_tex, vertex_normals), face_normals)
 }
 
 /// A `ply` mesh; its attributes are kept in the builder for the shape's BSDF

@@ -22,7 +22,7 @@ fn obj_quads_with_per_corner_uvs_and_normals() {
         f 1/1/1 2/2/1 3/3/1\n\
         f 1/5/1 3/3/1 4/4/1\n";
     let p = write_file(&dir, "corners.obj", src.as_bytes());
-    let d = read_obj(&p, false).unwrap();
+    let d = read_obj(&p, false, VertexNormals::Read).unwrap();
     assert_eq!(d.indices.len(), 2);
     assert!(d.normals.as_ref().unwrap().iter().all(|&n| n == Vec3::Z));
     let c = corner_uvs(&d);
@@ -36,12 +36,13 @@ fn obj_quads_with_per_corner_uvs_and_normals() {
     ];
     assert_eq!(c, expect);
     // flip_tex_coords (Mitsuba's default): v → 1 − v
-    let d = read_obj(&p, true).unwrap();
+    let d = read_obj(&p, true, VertexNormals::Read).unwrap();
     assert_eq!(corner_uvs(&d)[3], (Vec3::ZERO, Vec2::new(0.5, 0.75)));
 
     // a quad face (triangulated), no normals: smooth normals are computed by Mesh
     let src = "v -1 -1 0\nv 1 -1 0\nv 1 1 0\nv -1 1 0\nf 1 2 3 4\n";
-    let d = read_obj(&write_file(&dir, "quad.obj", src.as_bytes()), true).unwrap();
+    let d =
+        read_obj(&write_file(&dir, "quad.obj", src.as_bytes()), true, VertexNormals::Read).unwrap();
     assert_eq!(d.indices.len(), 2);
     assert!(d.normals.is_none() && d.uvs.is_none());
     let m = Mesh::from_data(d, &Transform::translate(Vec3::Z), false, false).unwrap();
@@ -54,22 +55,46 @@ fn obj_quads_with_per_corner_uvs_and_normals() {
 fn obj_errors() {
     let dir = temp_dir("shape-obj-errors");
     let missing = dir.join("missing.obj");
-    let e = read_obj(&missing, true).unwrap_err();
+    let e = read_obj(&missing, true, VertexNormals::Read).unwrap_err();
     assert!(e.to_string().contains("cannot open"), "{e}");
     let garbage: Vec<u8> =
         (0..4096u32).map(|i| (i.wrapping_mul(2_654_435_761) >> 13) as u8).collect();
-    assert!(read_obj(&write_file(&dir, "garbage.obj", &garbage), true).is_err());
-    assert!(read_obj(&write_file(&dir, "empty.obj", b"# nothing\nv 0 0 0\n"), true).is_err());
+    assert!(
+        read_obj(&write_file(&dir, "garbage.obj", &garbage), true, VertexNormals::Read).is_err()
+    );
+    assert!(read_obj(
+        &write_file(&dir, "empty.obj", b"# nothing\nv 0 0 0\n"),
+        true,
+        VertexNormals::Read
+    )
+    .is_err());
     assert!(read_obj(
         &write_file(&dir, "range.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"),
-        true
+        true,
+        VertexNormals::Read
     )
     .is_err());
     assert!(read_obj(
         &write_file(&dir, "bad.obj", b"v 0 0 zero\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"),
-        true
+        true,
+        VertexNormals::Read
     )
     .is_err());
+}
+
+/// Faces of which only some give vertex normals: an error that says so and names the way out
+/// (Mitsuba 3.9.1 gives the others zero normals, which render black); with `face_normals`
+/// the file's normals are ignored and the mesh loads, flat.
+#[test]
+fn obj_with_normals_on_some_faces_only() {
+    let dir = temp_dir("obj_partial_normals");
+    let src = b"v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvn 0 1 0\nf 1//1 2//1 3//1\nf 1 3 4\n";
+    let p = write_file(&dir, "partial.obj", src);
+    let e = read_obj(&p, true, VertexNormals::Read).unwrap_err();
+    assert!(e.0.contains("some faces give vertex normals (vn) and others do not"), "{}", e.0);
+    assert!(e.0.contains("face_normals"), "{}", e.0);
+    let d = read_obj(&p, true, VertexNormals::Ignore).unwrap();
+    assert_eq!((d.indices.len(), d.normals.is_none()), (2, true));
 }
 
 const TET_ASCII: &str = "ply\nformat ascii 1.0\ncomment test\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n\

@@ -39,7 +39,7 @@ pub use cylinder::Cylinder;
 pub use disk::Disk;
 pub use linearcurve::LinearCurve;
 pub use mesh::{Mesh, MeshData};
-pub use obj::{read_obj, DEFAULT_FLIP_TEX_COORDS};
+pub use obj::{read_obj, VertexNormals, DEFAULT_FLIP_TEX_COORDS};
 pub use ply::{read_ply, read_ply_with_attributes};
 pub use rectangle::Rectangle;
 pub use serialized::{read_serialized, SerializedShape};

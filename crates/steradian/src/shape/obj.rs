@@ -14,7 +14,13 @@
 //! corners use different position/uv/normal indices are de-duplicated into one index per
 //! corner), ignores materials, groups and objects (all objects become one mesh), and then
 //! builds a [`Mesh`](super::Mesh): when the file has no normals and `face_normals` is false,
-//! smooth angle-weighted vertex normals are computed, as in Mitsuba.
+//! smooth angle-weighted vertex normals are computed, as in Mitsuba. With `face_normals` the
+//! file's normals are not read at all.
+//!
+//! Where steradian differs on purpose: a file in which some faces give normals (`vn`) and
+//! others do not is an error that says so (set `face_normals`, or give every face normals).
+//! Mitsuba 3.9.1 loads it and gives the other faces' vertices zero normals, which render
+//! black.
 
 use std::io::BufReader;
 use std::path::Path;
@@ -27,7 +33,19 @@ use super::{MeshData, ShapeError};
 /// Default `flip_tex_coords` (Mitsuba's): OBJ's texture origin is bottom-left.
 pub const DEFAULT_FLIP_TEX_COORDS: bool = true;
 
-pub fn read_obj(path: &Path, flip_tex_coords: bool) -> Result<MeshData, ShapeError> {
+/// Whether [`read_obj`] reads the file's vertex normals (`face_normals` false) or ignores
+/// them (`face_normals` true: the mesh is flat-shaded whatever the file gives).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum VertexNormals {
+    Read,
+    Ignore,
+}
+
+pub fn read_obj(
+    path: &Path,
+    flip_tex_coords: bool,
+    vertex_normals: VertexNormals,
+) -> Result<MeshData, ShapeError> {
     let file = std::fs::File::open(path)
         .map_err(|e| ShapeError(format!("cannot open OBJ file \"{}\": {e}", path.display())))?;
     let mut reader = BufReader::new(file);
@@ -52,7 +70,23 @@ pub fn read_obj(path: &Path, flip_tex_coords: bool) -> Result<MeshData, ShapeErr
             )))
         }
     };
-    let all_normals = models.iter().all(|m| !m.mesh.normals.is_empty());
+    let all_normals =
+        vertex_normals == VertexNormals::Read && models.iter().all(|m| !m.mesh.normals.is_empty());
+    let partial_normals = |m: &tobj::Model| {
+        let nv = m.mesh.positions.len() / 3;
+        !m.mesh.normals.is_empty() && m.mesh.normals.len() != 3 * nv
+    };
+    if vertex_normals == VertexNormals::Read
+        && (models.iter().any(partial_normals)
+            || (!all_normals && models.iter().any(|m| !m.mesh.normals.is_empty())))
+    {
+        return Err(ShapeError(format!(
+            "OBJ file \"{}\": some faces give vertex normals (vn) and others do not (Mitsuba 3 \
+             gives the others zero normals, which render black); give every face normals, or set \
+             face_normals to true",
+            path.display()
+        )));
+    }
     let all_uvs = models.iter().all(|m| !m.mesh.texcoords.is_empty());
     let mut data = MeshData::default();
     let mut normals = Vec::new();

@@ -95,6 +95,12 @@ fn obj_with_normals_on_some_faces_only() {
     assert!(e.0.contains("face_normals"), "{}", e.0);
     let d = read_obj(&p, true, VertexNormals::Ignore).unwrap();
     assert_eq!((d.indices.len(), d.normals.is_none()), (2, true));
+    // the same for texture coordinates (Mitsuba 3.9.1 leaves the others' undefined)
+    let src =
+        b"v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\nf 1 3 4\n";
+    let e =
+        read_obj(&write_file(&dir, "partial_uv.obj", src), true, VertexNormals::Read).unwrap_err();
+    assert!(e.0.contains("some faces give texture coordinates (vt) and others do not"), "{}", e.0);
 }
 
 const TET_ASCII: &str = "ply\nformat ascii 1.0\ncomment test\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n\

@@ -108,7 +108,8 @@ pub fn read_obj(
         if all_uvs {
             if mesh.texcoords.len() != 2 * nv {
                 return Err(ShapeError(format!(
-                    "OBJ file \"{}\": inconsistent texture coordinate data",
+                    "OBJ file \"{}\": some faces give texture coordinates (vt) and others do not \
+                     (Mitsuba 3 leaves the others' undefined); give every face texture coordinates",
                     path.display()
                 )));
             }

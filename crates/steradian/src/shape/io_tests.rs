@@ -82,11 +82,11 @@ fn obj_errors() {
     .is_err());
 }
 
-/// Faces of which only some give vertex normals: an error that says so and names the way out
+/// Faces of which only some give vertex normals (or uvs): an error that says so and names the way out
 /// (Mitsuba 3.9.1 gives the others zero normals, which render black); with `face_normals`
 /// the file's normals are ignored and the mesh loads, flat.
 #[test]
-fn obj_with_normals_on_some_faces_only() {
+fn obj_with_normals_or_uvs_on_some_faces_only() {
     let dir = temp_dir("obj_partial_normals");
     let src = b"v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nvn 0 1 0\nf 1//1 2//1 3//1\nf 1 3 4\n";
     let p = write_file(&dir, "partial.obj", src);

@@ -338,6 +338,19 @@ fn film_scene(props: &str) -> String {
     scene(&format!("<sensor type=\"perspective\">\n  <film type=\"hdrfilm\">\n    {props}\n  </film>\n</sensor>"))
 }
 
+/// Mitsuba's integer `component_format` is named as unsupported, once prefixed by the plugin.
+#[test]
+fn film_component_format() {
+    let e = err(&film_scene("<string name=\"component_format\" value=\"uint32\"/>"));
+    check(
+        &e,
+        4,
+        5,
+        &["hdrfilm: unsupported component_format \"uint32\"", "\"uint32\" is not supported"],
+    );
+    assert!(!e.to_string().contains("hdrfilm: hdrfilm:"), "{e}");
+}
+
 #[test]
 fn film_size() {
     check(

@@ -59,7 +59,8 @@ impl ComponentFormat {
             "float16" => Ok(ComponentFormat::Float16),
             "float32" => Ok(ComponentFormat::Float32),
             other => Err(format!(
-                "hdrfilm: unsupported component_format \"{other}\" (expected \"float16\" or \"float32\")"
+                "unsupported component_format \"{other}\" (expected \"float16\" or \"float32\"; \
+                 Mitsuba's \"uint32\" is not supported)"
             )),
         }
     }

@@ -232,7 +232,6 @@ fn build_shape_node(
         ));
     }
     let shape_index = b.desc.shapes.len() as u32;
-    // (the emitter's index, whether the shape carries one: `directionalarea` adds none)
     if let Some(e) = emitter_nodes.first() {
         if let Some(first) = b.attached_emitters.insert(Arc::as_ptr(&e.node), e.pos().clone()) {
             return Err(LoadError::at(
@@ -245,6 +244,7 @@ fn build_shape_node(
             ));
         }
     }
+    // (the emitter's index, whether the shape carries one: `directionalarea` adds none)
     let (emitter, emitting) = match emitter_nodes.first() {
         Some(e) => match emitters::build_area(b, &e.node, shape_index, &shape)? {
             Some(light) => {

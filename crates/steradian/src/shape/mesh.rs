@@ -247,6 +247,14 @@ impl Mesh {
         Some(ns[i0 as usize] * b0 + ns[i1 as usize] * b1 + ns[i2 as usize] * b2)
     }
 
+    /// The unit shading normal at barycentrics (b0, b1, b2) of triangle `prim`; `None` without
+    /// vertex normals or where they cancel (the face's normal then stands).
+    #[inline(always)]
+    fn shading_normal(&self, prim: u32, b0: f32, b1: f32, b2: f32) -> Option<Vec3> {
+        let n = self.interpolated_normal(prim, b0, b1, b2)?.normalize_or_zero();
+        (n != Vec3::ZERO).then_some(n)
+    }
+
     fn uv_at(&self, prim: u32, b: Vec2) -> Vec2 {
         match &self.uvs {
             Some(uvs) => {
@@ -292,10 +300,7 @@ impl Mesh {
             }
             None => (e1, e2),
         };
-        let ns = match self.interpolated_normal(prim, b0, b1, b2).map(Vec3::normalize_or_zero) {
-            Some(s) if s != Vec3::ZERO => s,
-            _ => n,
-        };
+        let ns = self.shading_normal(prim, b0, b1, b2).unwrap_or(n);
         SurfaceInteraction {
             p,
             t: hit.t,
@@ -336,11 +341,8 @@ impl Mesh {
         let (mut ps, b) = self.sample_on_triangle(prim, u);
         // Mitsuba's `ps.n`: the interpolated vertex normal where the mesh has them, so that a
         // mesh light emits, and a meter on a mesh faces, by its shading normal
-        if let Some(ns) = self.interpolated_normal(prim, 1.0 - b.x - b.y, b.x, b.y) {
-            let ns = ns.normalize_or_zero();
-            if ns != Vec3::ZERO {
-                ps.n = ns;
-            }
+        if let Some(ns) = self.shading_normal(prim, 1.0 - b.x - b.y, b.x, b.y) {
+            ps.n = ns;
         }
         ps
     }

@@ -70,16 +70,11 @@ pub fn read_obj(
             )))
         }
     };
-    let all_normals =
-        vertex_normals == VertexNormals::Read && models.iter().all(|m| !m.mesh.normals.is_empty());
-    let partial_normals = |m: &tobj::Model| {
-        let nv = m.mesh.positions.len() / 3;
-        !m.mesh.normals.is_empty() && m.mesh.normals.len() != 3 * nv
-    };
-    if vertex_normals == VertexNormals::Read
-        && (models.iter().any(partial_normals)
-            || (!all_normals && models.iter().any(|m| !m.mesh.normals.is_empty())))
-    {
+    // normals are read when the file gives them, and then every model must give one per vertex
+    let given = |m: &tobj::Model| !m.mesh.normals.is_empty();
+    let complete = |m: &tobj::Model| given(m) && m.mesh.normals.len() == m.mesh.positions.len();
+    let read_normals = vertex_normals == VertexNormals::Read && models.iter().any(given);
+    if read_normals && !models.iter().all(complete) {
         return Err(ShapeError(format!(
             "OBJ file \"{}\": some faces give vertex normals (vn) and others do not (Mitsuba 3 \
              gives the others zero normals, which render black); give every face normals, or set \
@@ -96,13 +91,7 @@ pub fn read_obj(
         let base = data.positions.len() as u32;
         let nv = mesh.positions.len() / 3;
         data.positions.extend(mesh.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])));
-        if all_normals {
-            if mesh.normals.len() != 3 * nv {
-                return Err(ShapeError(format!(
-                    "OBJ file \"{}\": inconsistent normal data",
-                    path.display()
-                )));
-            }
+        if read_normals {
             normals.extend(mesh.normals.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])));
         }
         if all_uvs {
@@ -139,7 +128,7 @@ pub fn read_obj(
     if data.indices.is_empty() {
         return Err(ShapeError(format!("OBJ file \"{}\" contains no triangles", path.display())));
     }
-    if all_normals {
+    if read_normals {
         data.normals = Some(normals);
     }
     if all_uvs {

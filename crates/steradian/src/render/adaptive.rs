@@ -16,9 +16,13 @@
 //! finds too little to gain). The variance between the scrambles'
 //! means is the error of a Sobol render itself, where the variance of one scramble's samples
 //! overstates it by 1.2–5×, unevenly over the image (the reference scenes at 16 spp: on
-//! cornell a density from the one-scramble variance predicted 2.9× and gave 1.02×). The
-//! estimates are averaged over each pilot pixel's 3 × 3 pilot neighbourhood, every film
-//! pixel takes its pilot pixel's, and the densities d_p ∝ √v̄_p are normalised to a mean of 1
+//! cornell a density from the one-scramble variance predicted 2.9× and gave 1.02×). But four
+//! scrambles rarely see a rare bright path (a caustic), and where they all miss it the
+//! spread between them says nothing: a pilot pixel's estimate is the larger of that spread
+//! and [`SPREAD_SHARE`] of the one its samples' own spread implies. The estimates are
+//! averaged over each pilot pixel's 3 × 3 and 5 × 5 pilot neighbourhoods (the mean of the
+//! two), every film pixel takes its pilot pixel's, and the densities d_p ∝ √v̄_p are
+//! normalised to a mean of 1
 //! within [[`MIN_DENSITY`], [`MAX_DENSITY`]]. The floor of 0.75 keeps every pixel's error
 //! within 1/√0.75 = 1.15× a uniform render's, so a per-pixel test against a reference at the
 //! nominal spp stays valid (at 0.5 the `gridvolume` cloud fell from 99.84 % to 99.74 % of its
@@ -34,6 +38,11 @@
 //! Tried: 2 samples per scramble instead of 4 (veach relMSE 6.8e-5 against 5.7e-5); no
 //! averaging over neighbours (veach 1.18e-4: no gain at all, the map is noise); a 5 × 5
 //! average (veach 8.7e-5, materials 4.4e-5 against 4.7e-5); a floor of 0.2 Ȳ (within noise).
+//! The samples' own spread and the two neighbourhoods (2026-12-07, AMD EPYC, 2 cores, 64 spp,
+//! relMSE from pairs of seeds, `benches/results/2026-12-07-amd-epyc.md`): `glossy_spheres`
+//! 1.514e-4 → 1.303e-4 (4 pairs, same time), materials 4.63e-5 → 4.33e-5 (2 pairs), veach
+//! 6.32e-5 → 6.30e-5 (6 pairs); alone, the spread gave 1.473e-4, 4.33e-5 and 6.30e-5 (veach's
+//! 3 × 3 average stays near its best, glossy_spheres' caustics need the wider one).
 //!
 //! **The render.** At nominal sample count s (the pass bounds of `schedule.rs`, unchanged),
 //! pixel p holds its first ⌈d_p · s⌉ samples: passes, checkpoints, ranges and the image's
@@ -86,8 +95,13 @@ pub const MAX_DENSITY: f64 = 16.0;
 /// the reference scenes 0.3–0.5 gave the largest gains, 0.1 and 1 a tenth less.
 pub const ERROR_FLOOR: f64 = 0.5;
 
-/// Radius, in pilot pixels, of the square over which the pilot's variances are averaged.
+/// Radius, in pilot pixels, of the smaller of the two squares over which the pilot's
+/// variances are averaged (the other's is twice as large; module docs).
 const SMOOTHING_RADIUS: usize = 1;
+
+/// The share of the samples' own spread that bounds a pilot pixel's variance from below
+/// (module docs).
+const SPREAD_SHARE: f64 = 0.5;
 
 /// The pilot samples one pixel in each square of this side.
 pub const PILOT_STRIDE: u32 = 2;
@@ -123,6 +137,37 @@ pub fn pilot_spp(spp: u32) -> u32 {
 /// One pilot pixel's replicate means per channel (`None`: a replicate whose samples were all
 /// dropped).
 type ReplicateMeans = [Option<[f64; 3]>; REPLICATES];
+
+/// What the pilot learnt at one pilot pixel.
+#[derive(Clone, Copy, Debug)]
+struct PilotPixel {
+    /// Each replicate's mean.
+    means: ReplicateMeans,
+    /// The variance of one replicate's mean that the spread of its own samples implies, per
+    /// channel, averaged over the replicates (`None` with fewer than 2 samples per replicate).
+    spread: Option<[f64; 3]>,
+}
+
+impl PilotPixel {
+    fn of(reps: &[PixelAccum; REPLICATES]) -> PilotPixel {
+        let means = reps.map(|p| (p.w > 0.0).then(|| p.mean()));
+        // the sample variance s² = n/(n − 1)·(mean of L² − mean²) over the effective count
+        // n = (Σw)²/Σw², and s²/n the variance of the mean
+        let (mut sum, mut count) = ([0.0; 3], 0usize);
+        for (p, m) in reps.iter().zip(&means) {
+            let Some(m) = m else { continue };
+            let n = p.w * p.w / p.w2;
+            if n > 1.5 {
+                for c in 0..3 {
+                    sum[c] += ((p.wl2[c] / p.w - m[c] * m[c]) / (n - 1.0)).max(0.0);
+                }
+                count += 1;
+            }
+        }
+        let spread = (count > 0).then(|| sum.map(|s| s / count as f64));
+        PilotPixel { means, spread }
+    }
+}
 
 /// Renders the pilot with `blocks` (the render's own renderer: its scene, integrator and
 /// sensor) and decides: the densities when the render is to be adaptive (`force`: whatever
@@ -181,8 +226,7 @@ pub(super) fn pilot(
         rows.into_iter().collect()
     };
     let decide = |sums: &[[PixelAccum; REPLICATES]]| {
-        let grid: Vec<ReplicateMeans> =
-            sums.iter().map(|reps| reps.map(|p| (p.w > 0.0).then(|| p.mean()))).collect();
+        let grid: Vec<PilotPixel> = sums.iter().map(PilotPixel::of).collect();
         densities(&grid, (gw as usize, gh as usize, PILOT_STRIDE as usize), width, height)
     };
     let first = m.div_ceil(2);
@@ -210,7 +254,7 @@ pub(super) fn pilot(
 /// pixels) predicts, and the predicted gain over a uniform render. Uniform
 /// densities (gain 1) where the pilot saw no light or no noise.
 fn densities(
-    grid: &[ReplicateMeans],
+    grid: &[PilotPixel],
     (gw, gh, stride): (usize, usize, usize),
     width: u32,
     height: u32,
@@ -220,37 +264,51 @@ fn densities(
     // the image's mean over pilot pixels, replicates and channels
     let (sum, count) = grid
         .iter()
-        .flatten()
+        .flat_map(|p| p.means.iter())
         .flatten()
         .fold((0.0, 0usize), |(s, n), m| (s + m.iter().sum::<f64>(), n + 3));
     let floor2 = (ERROR_FLOOR * sum / count.max(1) as f64).powi(2);
     if !(floor2 > 0.0 && floor2.is_finite()) {
         return uniform;
     }
-    // each pilot pixel's relative variance between replicates, averaged over its channels;
-    // a pixel with fewer than 2 replicates takes the mean of the others
+    // each pilot pixel's relative variance of a replicate's mean, averaged over its channels:
+    // the larger of the spread between replicates and half the samples' own (module docs); a
+    // pixel with fewer than 2 replicates takes the mean of the others
     let rel: Vec<Option<f64>> = grid
         .iter()
-        .map(|reps| {
-            let reps: Vec<&[f64; 3]> = reps.iter().flatten().collect();
+        .map(|pixel| {
+            let reps: Vec<&[f64; 3]> = pixel.means.iter().flatten().collect();
             let n = reps.len() as f64;
             (reps.len() >= 2).then(|| {
-                (0..3)
+                let relative = |c: usize, var: f64| {
+                    let mean = reps.iter().map(|m| m[c]).sum::<f64>() / n;
+                    var / (mean * mean + floor2)
+                };
+                let between = (0..3)
                     .map(|c| {
                         let mean = reps.iter().map(|m| m[c]).sum::<f64>() / n;
                         let var =
                             reps.iter().map(|m| (m[c] - mean).powi(2)).sum::<f64>() / (n - 1.0);
-                        var / (mean * mean + floor2)
+                        relative(c, var)
                     })
                     .sum::<f64>()
-                    / 3.0
+                    / 3.0;
+                let within = pixel
+                    .spread
+                    .map_or(0.0, |v| (0..3).map(|c| relative(c, v[c])).sum::<f64>() / 3.0);
+                between.max(SPREAD_SHARE * within)
             })
         })
         .collect();
     let known: Vec<f64> = rel.iter().flatten().copied().collect();
     let fill = known.iter().sum::<f64>() / known.len().max(1) as f64;
     let rel: Vec<f64> = rel.iter().map(|r| r.unwrap_or(fill)).collect();
-    let smooth = box_average(&rel, gw, gh, SMOOTHING_RADIUS);
+    // the mean of the averages over squares of radius 1 and 2
+    let (near, far) = (
+        box_average(&rel, gw, gh, SMOOTHING_RADIUS),
+        box_average(&rel, gw, gh, 2 * SMOOTHING_RADIUS),
+    );
+    let smooth: Vec<f64> = near.iter().zip(&far).map(|(a, b)| 0.5 * (a + b)).collect();
     // each film pixel takes its pilot pixel's relative variance
     let v: Vec<f64> = (0..h)
         .flat_map(|y| (0..w).map(move |x| (x, y)))
@@ -303,6 +361,26 @@ fn box_average(v: &[f64], w: usize, h: usize, r: usize) -> Vec<f64> {
 mod tests {
     use super::*;
 
+    /// A pilot whose replicates agree everywhere but whose samples spread on the left half (a
+    /// rare bright path seen as often in every scramble): the spread alone sends the samples
+    /// there.
+    #[test]
+    fn the_samples_own_spread_counts() {
+        let (gw, gh) = (8usize, 4usize);
+        let (w, h) = (gw as u32, gh as u32);
+        let grid: Vec<PilotPixel> = (0..gw * gh)
+            .map(|i| PilotPixel {
+                means: [Some([1.0; 3]); REPLICATES],
+                spread: Some([if i % gw < gw / 2 { 0.5 } else { 0.0 }; 3]),
+            })
+            .collect();
+        let (d, gain) = densities(&grid, (gw, gh, 1), w, h);
+        assert!(d[0] > 1.0 && d[w as usize - 1] < 1.0 && gain > 1.1, "{} {} {gain}", d[0], d[7]);
+        let quiet: Vec<PilotPixel> =
+            grid.iter().map(|p| PilotPixel { spread: None, ..*p }).collect();
+        assert_eq!(densities(&quiet, (gw, gh, 1), w, h).1, 1.0);
+    }
+
     /// A pilot whose left half varies between replicates and whose right half does not: the
     /// noisy half gets the samples, the quiet half the floor, the mean stays 1 and the gain
     /// is predicted; a pilot without noise or without light gives a uniform render.
@@ -310,10 +388,13 @@ mod tests {
     fn noisy_pixels_get_more_samples() {
         let (gw, gh) = (8usize, 4usize);
         let (w, h) = (2 * gw as u32 - 1, 2 * gh as u32);
-        let grid: Vec<ReplicateMeans> = (0..gw * gh)
+        let grid: Vec<PilotPixel> = (0..gw * gh)
             .map(|i| {
                 let noisy = i % gw < gw / 2;
-                std::array::from_fn(|r| Some([if noisy { (r % 2) as f64 * 2.0 } else { 1.0 }; 3]))
+                let means = std::array::from_fn(|r| {
+                    Some([if noisy { (r % 2) as f64 * 2.0 } else { 1.0 }; 3])
+                });
+                PilotPixel { means, spread: None }
             })
             .collect();
         let (d, gain) = densities(&grid, (gw, gh, 2), w, h);
@@ -326,9 +407,10 @@ mod tests {
         assert!(gain > 1.1, "{gain}");
         // every film pixel takes its pilot pixel's density: pixels (0, 0) and (1, 1) share one
         assert_eq!(d[0], d[w as usize + 1]);
-        let flat: Vec<ReplicateMeans> = vec![[Some([1.0; 3]); REPLICATES]; gw * gh];
+        let pixel = |m: f64| PilotPixel { means: [Some([m; 3]); REPLICATES], spread: None };
+        let flat = vec![pixel(1.0); gw * gh];
         assert_eq!(densities(&flat, (gw, gh, 2), w, h), (vec![1.0; (w * h) as usize], 1.0));
-        let dark: Vec<ReplicateMeans> = vec![[Some([0.0; 3]); REPLICATES]; gw * gh];
+        let dark = vec![pixel(0.0); gw * gh];
         assert_eq!(densities(&dark, (gw, gh, 2), w, h), (vec![1.0; (w * h) as usize], 1.0));
     }
 
@@ -348,16 +430,17 @@ mod tests {
         // (mean, standard error) of the pixel estimates over `trials` images
         let run = |own: bool| {
             let (mut sum, mut sum2, mut n) = (0.0, 0.0, 0.0);
-            for trial in 0..1000u64 {
+            for trial in 0..3000u64 {
                 // each pixel's own stream of samples, and a pilot stream apart from it
                 let mut render: Vec<Pcg32> =
                     (0..gw * gh).map(|p| Pcg32::new(trial, 2 * p as u64)).collect();
                 let mut apart: Vec<Pcg32> =
                     (0..gw * gh).map(|p| Pcg32::new(trial, 2 * p as u64 + 1)).collect();
                 let mut taken: Vec<Vec<f64>> = vec![Vec::new(); gw * gh];
-                let grid: Vec<ReplicateMeans> = (0..gw * gh)
-                    .map(|p| {
-                        std::array::from_fn(|_| {
+                let grid: Vec<PilotPixel> = (0..gw * gh)
+                    .map(|p| PilotPixel {
+                        spread: None,
+                        means: std::array::from_fn(|_| {
                             let mean = (0..2)
                                 .map(|_| {
                                     if own {
@@ -371,7 +454,7 @@ mod tests {
                                 .sum::<f64>()
                                 / 2.0;
                             Some([mean; 3])
-                        })
+                        }),
                     })
                     .collect();
                 // one pilot pixel per film pixel

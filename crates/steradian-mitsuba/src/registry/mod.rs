@@ -418,6 +418,18 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
             ObjectTag::Medium => {
                 b.medium_index(node)?;
             }
+            // a sampler, film or filter declared with an id and referenced from a sensor (as
+            // Mitsuba allows) is built there; built here too so that its errors show (one no
+            // sensor references is unused, as in Mitsuba)
+            ObjectTag::Sampler => {
+                sensors::build_sampler(&b, node)?;
+            }
+            ObjectTag::Film => {
+                sensors::build_film(node)?;
+            }
+            ObjectTag::RFilter => {
+                sensors::build_filter(node)?;
+            }
             ObjectTag::Integrator => {
                 if let Some(first) = integrator_pos.replace(node.pos.clone()) {
                     return Err(LoadError::at(

@@ -3,7 +3,7 @@
 //! filter (`box`, `tent`, `gaussian`, `mitchell`, `catmullrom`, `lanczos`) and sampler (`independent`, `stratified`,
 //! `multijitter`, `orthogonal`, `ldsampler`). Every sensor also takes Mitsuba's `shutter_open`
 //! and `shutter_close`, which change nothing (see [`shutter`]); `hdrfilm` takes `compensate`,
-//! which its f64 sums make moot.
+//! which its f64 sums make moot, and `banner`, which Mitsuba 3.9.1 accepts and ignores.
 
 use glam::{UVec2, Vec2};
 use steradian::emitter::horizontal_illuminance;
@@ -58,7 +58,7 @@ pub(super) const FILTERS: &Plugins<BuildFilter> = &[
     ("lanczos", lanczos_filter),
 ];
 
-fn build_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
+pub(super) fn build_filter(node: &PluginNode) -> Result<ReconstructionFilter, LoadError> {
     let f = lookup(FILTERS, node)?(node)?;
     node.check_all_used()?;
     Ok(f)
@@ -99,7 +99,7 @@ type BuildFilm = fn(&PluginNode) -> Result<Film, LoadError>;
 /// Every film plugin, by Mitsuba `type`.
 pub(super) const FILMS: &Plugins<BuildFilm> = &[("hdrfilm", hdrfilm)];
 
-fn build_film(node: &PluginNode) -> Result<Film, LoadError> {
+pub(super) fn build_film(node: &PluginNode) -> Result<Film, LoadError> {
     let film = lookup(FILMS, node)?(node)?;
     node.check_all_used()?;
     Ok(film)
@@ -135,6 +135,9 @@ fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
     };
     // Kahan-compensated sums in Mitsuba's f32 film; steradian's sums are f64 anyway
     p.get_bool("compensate")?;
+    // Mitsuba 0.6's film banner: Mitsuba 3.9.1 still accepts the flag (scenes written for
+    // Mitsuba 0.6 and 2 carry it) and draws nothing; neither does steradian
+    p.get_bool("banner")?;
     let sample_border = match p.get_bool("sample_border")? {
         Some(true) => SampleBorder::WithMargin,
         Some(false) | None => SampleBorder::FilmOnly,
@@ -176,7 +179,7 @@ fn hdrfilm(node: &PluginNode) -> Result<Film, LoadError> {
 }
 
 /// Reads one sampler's own parameters (not `sample_count` and `seed`) from its node.
-type BuildSampler = fn(&PluginNode) -> Result<SamplerKind, LoadError>;
+type BuildSampler = fn(&Builder, &PluginNode) -> Result<SamplerKind, LoadError>;
 
 /// Every sampler plugin, by Mitsuba `type`. Every Mitsuba sampler type promises the same
 /// expectation and differs only in noise; steradian draws Owen-scrambled Sobol points for all
@@ -190,8 +193,8 @@ pub(super) const SAMPLERS: &Plugins<BuildSampler> = &[
     ("ldsampler", sobol),
 ];
 
-fn build_sampler(node: &PluginNode) -> Result<Sampler, LoadError> {
-    let kind = lookup(SAMPLERS, node)?(node)?;
+pub(super) fn build_sampler(b: &Builder, node: &PluginNode) -> Result<Sampler, LoadError> {
+    let kind = lookup(SAMPLERS, node)?(b, node)?;
     let sample_count = positive_int(node, "sample_count", Sampler::DEFAULT_SAMPLE_COUNT as i64)?;
     let seed = node.props.get_int("seed")?.unwrap_or(Sampler::DEFAULT_SEED as i64);
     if seed < 0 {
@@ -205,22 +208,37 @@ fn build_sampler(node: &PluginNode) -> Result<Sampler, LoadError> {
 }
 
 /// `independent` and `ldsampler`: no parameters of their own.
-fn sobol(_: &PluginNode) -> Result<SamplerKind, LoadError> {
+fn sobol(_: &Builder, _: &PluginNode) -> Result<SamplerKind, LoadError> {
     Ok(SamplerKind::Sobol)
 }
 
-/// `stratified` and `multijitter`: `jitter` must stay on (off is biased).
-fn jittered(node: &PluginNode) -> Result<SamplerKind, LoadError> {
+/// `jitter` of `stratified`, `multijitter` and `orthogonal` (default true). Mitsuba's
+/// `jitter = false` puts each sample at its stratum's centre, which biases the image;
+/// steradian draws its own randomised points for every sampler type anyway, so the flag is
+/// accepted (scenes exported by the Blender add-on set it) and ignored, with a warning.
+fn jitter(b: &Builder, node: &PluginNode) -> Result<(), LoadError> {
     if node.props.get_bool("jitter")? == Some(false) {
-        return Err(LoadError::at(
-            node.props.position("jitter").unwrap(),
-            format!("{}: jitter = false (biased) is not supported", node.desc()),
+        let pos = node.props.position("jitter").unwrap_or(&node.pos);
+        b.warn(LoadWarning::at(
+            pos,
+            format!(
+                "{}: jitter = false is ignored: steradian's samples are always randomised \
+                 (Owen-scrambled Sobol points), so the image stays unbiased where Mitsuba's \
+                 would sit at the strata's centres",
+                node.desc()
+            ),
         ));
     }
+    Ok(())
+}
+
+/// `stratified` and `multijitter`: `jitter` (see [`jitter`]).
+fn jittered(b: &Builder, node: &PluginNode) -> Result<SamplerKind, LoadError> {
+    jitter(b, node)?;
     Ok(SamplerKind::Sobol)
 }
 
-fn orthogonal(node: &PluginNode) -> Result<SamplerKind, LoadError> {
+fn orthogonal(b: &Builder, node: &PluginNode) -> Result<SamplerKind, LoadError> {
     if let Some(s) = node.props.get_int("strength")? {
         if s != 2 {
             return Err(LoadError::at(
@@ -229,12 +247,7 @@ fn orthogonal(node: &PluginNode) -> Result<SamplerKind, LoadError> {
             ));
         }
     }
-    if node.props.get_bool("jitter")? == Some(false) {
-        return Err(LoadError::at(
-            node.props.position("jitter").unwrap(),
-            "orthogonal: jitter = false (biased) is not supported",
-        ));
-    }
+    jitter(b, node)?;
     Ok(SamplerKind::Sobol)
 }
 
@@ -380,7 +393,7 @@ pub(crate) fn build(
         }
     };
     let sampler = match single_child(node, ObjectTag::Sampler)? {
-        Some(s) => build_sampler(s)?,
+        Some(s) => build_sampler(b, s)?,
         None => Sampler::default(),
     };
     let kind = build_kind(b, node, &film, shape)?;

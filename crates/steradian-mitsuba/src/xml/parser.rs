@@ -137,6 +137,37 @@ fn xml_error(path: &Arc<PathBuf>, e: &roxmltree::Error) -> LoadError {
     LoadError::at(&pos, format!("malformed XML: {msg}"))
 }
 
+/// The text with every `-` inside a comment made a space where some comment holds `--` or
+/// ends in `-`: XML forbids both, Mitsuba's parser (pugixml) accepts them, and real scenes
+/// have them (Sionna's licence headers: `<!--` / `-- SPDX-License-Identifier` / `-->`). A
+/// comment ends at the first `-->`, as in pugixml. Lengths and line breaks are kept, so
+/// error positions stay those of the file.
+fn lenient_comments(text: &str) -> std::borrow::Cow<'_, str> {
+    let mut bodies = Vec::new();
+    let mut at = 0;
+    while let Some(open) = text[at..].find("<!--") {
+        let start = at + open + 4;
+        let Some(len) = text[start..].find("-->") else { break };
+        let body = &text[start..start + len];
+        if body.contains("--") || body.ends_with('-') {
+            bodies.push(start..start + len);
+        }
+        at = start + len + 3;
+    }
+    if bodies.is_empty() {
+        return std::borrow::Cow::Borrowed(text);
+    }
+    let mut out = text.as_bytes().to_vec();
+    for range in bodies {
+        out[range].iter_mut().filter(|b| **b == b'-').for_each(|b| *b = b' ');
+    }
+    // only ASCII '-' bytes were replaced by ASCII spaces: still UTF-8
+    match String::from_utf8(out) {
+        Ok(s) => std::borrow::Cow::Owned(s),
+        Err(_) => std::borrow::Cow::Borrowed(text),
+    }
+}
+
 fn parse_doc<'i>(path: &Arc<PathBuf>, text: &'i str) -> Result<roxmltree::Document<'i>, LoadError> {
     let opts = roxmltree::ParsingOptions { allow_dtd: true, ..Default::default() };
     roxmltree::Document::parse_with_options(text, opts).map_err(|e| xml_error(path, &e))
@@ -187,7 +218,8 @@ impl Parser {
         text: &str,
         dir: PathBuf,
     ) -> Result<SceneNode, LoadError> {
-        let doc = parse_doc(&path, text)?;
+        let text = lenient_comments(text);
+        let doc = parse_doc(&path, &text)?;
         let root = doc.root_element();
         let mut src = Src { path: path.clone(), doc: &doc, dir, upgrade: false };
         let name = root.tag_name().name().to_string();
@@ -510,6 +542,7 @@ impl Parser {
         })?;
         self.resolver.record(&path);
         let ipath = Arc::new(path.clone());
+        let text = lenient_comments(&text);
         let doc = parse_doc(&ipath, &text)?;
         let root = doc.root_element();
         let mut isrc = Src {
@@ -617,7 +650,12 @@ impl Parser {
         attrs.allow(allowed)?;
         let name = self.slot_name(src, attrs.require("name")?, parent)?;
         parent.claim(&name, &attrs.pos)?;
-        let value = values::parse_value(attrs, &name, parent.tag == ObjectTag::Emitter)?;
+        let resolve = |file: &str| {
+            let path = self.resolver.resolve(file, &src.dir);
+            self.resolver.record(&path);
+            path
+        };
+        let value = values::parse_value(attrs, &name, parent.tag == ObjectTag::Emitter, &resolve)?;
         parent.props.insert(name, value, attrs.pos.clone())
     }
 }

@@ -78,3 +78,28 @@ fn unsupported_and_malformed_spectra_are_located_errors() {
         assert!(e.pos.as_ref().is_some_and(|p| p.line == 7), "{body}: {e}");
     }
 }
+
+/// `<spectrum filename=…>` reads Mitsuba's spectrum files (a "wavelength value" line per
+/// sample, `#` comments, blank lines) and gives what the same list written inline gives;
+/// a malformed line is an error naming the file and line.
+#[test]
+fn spectrum_files_give_the_inline_lists_value() {
+    use steradian::testkit::{temp_dir, write_file};
+    let dir = temp_dir("typed-spectra-spd");
+    write_file(&dir, "lamp.spd", "# a lamp\n400 1\n\n550   2\n700\t3\n");
+    write_file(&dir, "bad.spd", "400 1\n550 two\n");
+    let from = |file: &str| {
+        let xml = scene(&format!("<spectrum name=\"radiance\" filename=\"{file}\"/>"));
+        load_string(&xml, Path::new("s.xml"), &dir, &[])
+    };
+    let job = from("lamp.spd").unwrap_or_else(|e| panic!("{e}"));
+    let out = render(&job, &RenderOptions { spp: Some(4), ..Default::default() }).unwrap();
+    let img = out.film().develop();
+    let file = [img.data[0], img.data[1], img.data[2]];
+    let inline = seen("<spectrum name=\"radiance\" value=\"400:1, 550:2, 700:3\"/>");
+    assert_eq!(file, inline);
+    let e = from("bad.spd").unwrap_err().to_string();
+    assert!(e.contains("bad.spd:2:") && e.contains("could not parse a number"), "{e}");
+    let e = from("missing.spd").unwrap_err().to_string();
+    assert!(e.contains("cannot read spectrum file") && e.contains("missing.spd"), "{e}");
+}

@@ -6,6 +6,8 @@
 //! all of `x`, `y`, `z`; `<rgb>` takes 1 (broadcast) or 3 numbers. Spectra are reduced to RGB
 //! by [`crate::spectrum`], in the role their name and owner give them.
 
+use std::path::{Path, PathBuf};
+
 use glam::Vec3;
 
 use super::attrs::{parse_f64, tokenize, Attr, Attrs};
@@ -15,11 +17,13 @@ use crate::spectrum::{self, SpectrumRole};
 
 /// The value of property element `attrs` (its tag is `attrs.elem`), named `name`;
 /// `within_emitter` is true for a direct property of an `<emitter>` (it decides a spectrum's
-/// role). The element's attributes have been checked by the caller.
+/// role); `resolve` finds a file a `<spectrum filename=…>` names. The element's attributes
+/// have been checked by the caller.
 pub(super) fn parse_value(
     attrs: &Attrs,
     name: &str,
     within_emitter: bool,
+    resolve: &dyn Fn(&str) -> PathBuf,
 ) -> Result<PropertyValue, LoadError> {
     let tag = attrs.elem.as_str();
     let num = |a: &Attr, t: &str| -> Result<f64, LoadError> {
@@ -119,17 +123,21 @@ pub(super) fn parse_value(
                 }
             }
         }
-        "spectrum" => PropertyValue::Spectrum(parse_spectrum(attrs, name, within_emitter)?),
+        "spectrum" => {
+            PropertyValue::Spectrum(parse_spectrum(attrs, name, within_emitter, resolve)?)
+        }
         _ => return Err(attrs.error(format!("unexpected tag <{tag}>"))),
     };
     Ok(value)
 }
 
-/// `<spectrum value="…">`: one number (uniform) or `wavelength:value` pairs.
+/// `<spectrum value="…">`: one number (uniform) or `wavelength:value` pairs; or
+/// `<spectrum filename="…">`: a file of such pairs (see [`read_spd`]).
 fn parse_spectrum(
     attrs: &Attrs,
     name: &str,
     within_emitter: bool,
+    resolve: &dyn Fn(&str) -> PathBuf,
 ) -> Result<SpectrumValue, LoadError> {
     match (attrs.get("value"), attrs.get("filename")) {
         (Some(_), Some(_)) | (None, None) => {
@@ -137,7 +145,10 @@ fn parse_spectrum(
                 .error("<spectrum> needs exactly one of the attributes 'value' and 'filename'"))
         }
         (None, Some(a)) => {
-            Err(LoadError::at(&a.pos, "<spectrum filename=…> (.spd files) is not supported yet"))
+            let path = resolve(&a.value);
+            let (wl, vals) = read_spd(&path).map_err(|m| LoadError::at(&a.pos, m))?;
+            let role = SpectrumRole::of(name, within_emitter);
+            Ok(SpectrumValue::Rgb(spectrum::wavelength_list_to_rgb(&wl, &vals, role)))
         }
         (Some(a), None) => {
             let role = SpectrumRole::of(name, within_emitter);
@@ -199,4 +210,43 @@ fn parse_spectrum(
             Ok(SpectrumValue::Rgb(spectrum::wavelength_list_to_rgb(&wl, &vals, role)))
         }
     }
+}
+
+/// The wavelengths (nm) and values of a spectrum file, as Mitsuba 3 reads one
+/// (`spectrum_from_file`): a line per sample, "wavelength value" separated by white space,
+/// `#` starting a comment line, blank lines skipped; at least two samples, wavelengths
+/// strictly increasing and every number finite (the message names the line otherwise).
+fn read_spd(path: &Path) -> Result<(Vec<f64>, Vec<f64>), String> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| format!("cannot read spectrum file \"{}\": {e}", path.display()))?;
+    let (mut wl, mut vals) = (Vec::new(), Vec::new());
+    for (i, line) in text.lines().enumerate() {
+        let line = line.trim();
+        if line.is_empty() || line.starts_with('#') {
+            continue;
+        }
+        let bad = |what: &str| format!("{}:{}: {what} in \"{line}\"", path.display(), i + 1);
+        let toks: Vec<&str> = line.split_whitespace().collect();
+        let [w, v] = toks.as_slice() else {
+            return Err(bad("expected a wavelength and a value"));
+        };
+        let (Some(w), Some(v)) = (parse_f64(w), parse_f64(v)) else {
+            return Err(bad("could not parse a number"));
+        };
+        if !(w.is_finite() && v.is_finite()) {
+            return Err(bad("a number is not finite"));
+        }
+        if wl.last().is_some_and(|&prev| w <= prev) {
+            return Err(bad("wavelengths must be strictly increasing"));
+        }
+        wl.push(w);
+        vals.push(v);
+    }
+    if wl.len() < 2 {
+        return Err(format!(
+            "spectrum file \"{}\" needs at least two wavelength-value lines",
+            path.display()
+        ));
+    }
+    Ok((wl, vals))
 }

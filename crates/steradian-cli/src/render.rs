@@ -344,7 +344,13 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
     let (image, error) = (out.image(), out.stderr_image());
     let aovs = out.aov_images();
     let color = out.film().pixel_format.color();
-    if aovs.is_empty() && color == ColorChannels::Rgb {
+    // f32 whatever the scene's `component_format` says (float16 would only lose precision),
+    // except `uint32`, whose values are Mitsuba's integers (`steradian::film::hdrfilm`)
+    let format = match out.film().component_format {
+        ComponentFormat::UInt32 => ComponentFormat::UInt32,
+        ComponentFormat::Float16 | ComponentFormat::Float32 => ComponentFormat::Float32,
+    };
+    if aovs.is_empty() && color == ColorChannels::Rgb && format == ComponentFormat::Float32 {
         write_exr(&output, &image)?;
     } else {
         // the image in the film's `pixel_format` (R, G, B; Y; or X, Y, Z), then each AOV
@@ -356,7 +362,7 @@ pub fn run(args: RenderArgs) -> Result<(), CliError> {
             channels: &layer.channels,
             image: img,
         }));
-        write_exr_channels(&output, &layers, ComponentFormat::Float32)?;
+        write_exr_channels(&output, &layers, format)?;
     }
     let png = output.with_extension("png");
     match args.quantity {

@@ -338,15 +338,16 @@ fn film_scene(props: &str) -> String {
     scene(&format!("<sensor type=\"perspective\">\n  <film type=\"hdrfilm\">\n    {props}\n  </film>\n</sensor>"))
 }
 
-/// Mitsuba's integer `component_format` is named as unsupported, once prefixed by the plugin.
+/// An unknown `component_format` is named, once prefixed by the plugin, with the three
+/// formats there are.
 #[test]
 fn film_component_format() {
-    let e = err(&film_scene("<string name=\"component_format\" value=\"uint32\"/>"));
+    let e = err(&film_scene("<string name=\"component_format\" value=\"uint8\"/>"));
     check(
         &e,
         4,
         5,
-        &["hdrfilm: unsupported component_format \"uint32\"", "\"uint32\" is not supported"],
+        &["hdrfilm: unsupported component_format \"uint8\"", "\"float32\" or \"uint32\""],
     );
     assert!(!e.to_string().contains("hdrfilm: hdrfilm:"), "{e}");
 }

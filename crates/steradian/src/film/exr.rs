@@ -83,6 +83,7 @@ pub fn write_exr_channels(
             let samples = match format {
                 ComponentFormat::Float32 => FlatSamples::F32(values.collect()),
                 ComponentFormat::Float16 => FlatSamples::F16(values.map(f16::from_f32).collect()),
+                ComponentFormat::UInt32 => FlatSamples::U32(values.map(to_uint32).collect()),
             };
             channels.push(AnyChannel::new(name.as_str(), samples));
             names.push(name);
@@ -90,6 +91,16 @@ pub fn write_exr_channels(
     }
     let image = ExrImage::from_channels((w as usize, h as usize), AnyChannels::sort(channels));
     image.write().non_parallel().to_file(path).map_err(|e| err(e.to_string()))
+}
+
+/// A value as Mitsuba 3.9.1 writes it in a `uint32` file: clamped to [0, 1] and scaled to
+/// 2³² − 1, in single precision (so 1 becomes 4294967040, the largest f32 below 2³²).
+fn to_uint32(v: f32) -> u32 {
+    const LARGEST: f32 = 4_294_967_040.0;
+    if v.is_nan() {
+        return 0;
+    }
+    (v.clamp(0.0, 1.0) * 4_294_967_295.0).min(LARGEST) as u32
 }
 
 /// Reads the RGB channels (`R`, `G`, `B`, float16, float32 or uint32; any compression) of an
@@ -175,6 +186,23 @@ mod tests {
         assert_eq!(back.height, 7);
         assert_eq!(back.data, img.data); // bit-exact, including layout
         std::fs::remove_file(&p).ok();
+    }
+
+    /// `uint32` files hold Mitsuba's integers: values clamped to [0, 1], times 2³² − 1 (the
+    /// figures Mitsuba 3.9.1 wrote for 0.40000007, 3.7 and 12345.6).
+    #[test]
+    fn exr_uint32_as_mitsuba_writes_it() {
+        assert_eq!(to_uint32(0.400_000_07), 1_717_987_200);
+        assert_eq!(to_uint32(3.7), 4_294_967_040);
+        assert_eq!(to_uint32(1.0), 4_294_967_040);
+        assert_eq!((to_uint32(-2.0), to_uint32(f32::NAN), to_uint32(0.0)), (0, 0, 0));
+        let dir = temp_dir("film-exr-uint32");
+        let img = Image::from_data(2, 1, vec![0.5, 0.25, 2.0, 0.0, 1.0, 0.125]).unwrap();
+        let p = dir.join("u32.exr");
+        write_exr_layers_as(&p, &[("", &img)], ComponentFormat::UInt32).unwrap();
+        let back = read_exr(&p).unwrap();
+        let expected: Vec<f32> = img.data.iter().map(|&v| to_uint32(v) as f32).collect();
+        assert_eq!(back.data, expected);
     }
 
     #[test]

@@ -8,7 +8,7 @@
 //! | `width`            | integer | 768          | image width in pixels (1 ..= 32768)              |
 //! | `height`           | integer | 576          | image height in pixels (1 ..= 32768)             |
 //! | `pixel_format`     | string  | `"rgb"`      | `rgb`, `rgba`, `luminance`, `luminance_alpha`, `xyz`, `xyza`: the file's channels (`pixel_format.rs`) |
-//! | `component_format` | string  | `"float16"`  | `float16` or `float32`: precision of files the film writes itself; developed images are always f32 |
+//! | `component_format` | string  | `"float16"`  | `float16`, `float32` or `uint32`: `steradian render` writes f32 for both float formats (half precision would only lose digits) and, for `uint32`, Mitsuba 3.9.1's integers (each value clamped to [0, 1] and scaled to 2³² − 1); developed images are always f32 |
 //! | `sample_border`    | boolean | false        | also sample the pixels just outside the film (or crop window), [`SampleBorder`] |
 //! | `rfilter`          | filter  | `gaussian`   | reconstruction filter (σ = 0.5 px, radius 2 px)  |
 //!
@@ -50,6 +50,10 @@ pub enum ComponentFormat {
     Float16,
     /// IEEE single floats.
     Float32,
+    /// Unsigned 32-bit integers: Mitsuba 3.9.1's conversion, the value clamped to [0, 1] and
+    /// multiplied by 2³² − 1 (in single precision, as Mitsuba computes it), so that radiance
+    /// above 1 W/(m²·sr) saturates.
+    UInt32,
 }
 
 impl ComponentFormat {
@@ -58,9 +62,10 @@ impl ComponentFormat {
         match s {
             "float16" => Ok(ComponentFormat::Float16),
             "float32" => Ok(ComponentFormat::Float32),
+            "uint32" => Ok(ComponentFormat::UInt32),
             other => Err(format!(
-                "unsupported component_format \"{other}\" (expected \"float16\" or \"float32\"; \
-                 Mitsuba's \"uint32\" is not supported)"
+                "unsupported component_format \"{other}\" (expected \"float16\", \"float32\" or \
+                 \"uint32\")"
             )),
         }
     }

@@ -457,20 +457,6 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
             "the scene has no <integrator> (Mitsuba 3 gives none by default; add e.g. <integrator type=\"path\"/>)",
         ));
     };
-    if matches!(integrator, steradian::integrator::Integrator::ParticleTracer(_)) {
-        if let Some(p) = b
-            .desc
-            .emitters
-            .iter()
-            .position(|e| matches!(e, steradian::emitter::Emitter::Projector(_)))
-        {
-            let pos = integrator_pos.clone().unwrap_or_else(|| root.pos.clone());
-            return Err(LoadError::at(
-                &pos,
-                format!("<integrator type=\"ptracer\">: cannot start light paths on the scene's projector (emitter {p}); steradian's particle tracer has no emission sampling for it: use `path`"),
-            ));
-        }
-    }
     if integrator.alpha_rule().is_none()
         && b.desc.sensors.iter().any(|s| s.film.pixel_format.has_alpha())
     {

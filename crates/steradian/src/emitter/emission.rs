@@ -14,8 +14,7 @@
 //! | `directional` | uniform on the disk of the bounding sphere's radius R across the beam, a radius upstream of the centre | the beam | π R²·E |
 //! | `constant` | as `directional`, across the sampled direction | uniform sphere | 4π·π R²·L |
 //! | `envmap` | as `constant` | the map's importance sampling | π R²·L(ω)/pdf(ω) |
-//!
-//! `projector` has no emission sampling (`None`); the loader refuses it with `ptracer`.
+//! | `projector` | the pinhole | uniform over the image on the plane z = 1 | I(ω)/p(ω) = π·scale·E(uv)·A (rigid `to_world`) |
 
 use std::f32::consts::PI;
 
@@ -116,7 +115,10 @@ impl Emitter {
                 let (ray, area) = from_infinity(-s.wi, center, radius, u_pos);
                 EmittedRay { ray, weight: s.weight * area }
             }
-            Emitter::Projector(_) => return None,
+            Emitter::Projector(e) => {
+                let (d, weight) = e.sample_emission(u_dir)?;
+                EmittedRay { ray: Ray::infinite(e.position(), d), weight }
+            }
         };
         (emitted.weight != Spectrum::ZERO && emitted.weight.is_finite()).then_some(emitted)
     }
@@ -146,7 +148,29 @@ mod tests {
             20f32.to_radians(),
         )
         .unwrap();
+        // a projector whose image is brighter at one corner, aimed along a tilted axis
+        // (nearest lookups: the mean over the image is the pixels' mean, as `flux` takes it)
+        use crate::texture::{Bitmap, FilterType, ImageFormat, LoadedImage, UvTransform, WrapMode};
+        let data = vec![4.0, 1.0, 1.0, 0.25];
+        let img = LoadedImage { width: 2, height: 2, channels: 1, data, format: ImageFormat::Exr };
+        let image = Bitmap::new(
+            "e",
+            img,
+            true,
+            FilterType::Nearest,
+            WrapMode::Clamp,
+            UvTransform::IDENTITY,
+        )
+        .unwrap();
+        let projector = crate::emitter::Projector::new(
+            &Transform::look_at(Vec3::ONE, Vec3::new(0.3, -1.0, 0.2), Vec3::Y).unwrap(),
+            Texture::Bitmap(image),
+            1.5,
+            50f32.to_radians(),
+            2.0,
+        );
         let lights = [
+            Emitter::Projector(projector),
             Emitter::Area(AreaLight::new(0, Texture::Constant(Spectrum::splat(2.0)))),
             Emitter::Point(PointLight::new(Vec3::ONE, Spectrum::splat(1.5))),
             Emitter::Spot(spot),

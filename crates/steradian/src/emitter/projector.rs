@@ -31,6 +31,7 @@ pub struct Projector {
     position: Vec3,
     /// to_world applied to +z (not normalised, as Mitsuba takes it).
     axis: Vec3,
+    to_world: Transform,
     to_local: Transform,
     /// The image (boxed: untextured lights keep the emitter enum small).
     pub irradiance: Box<Texture>,
@@ -55,6 +56,7 @@ impl Projector {
         Projector {
             position: to_world.point(Vec3::ZERO),
             axis: to_world.vector(Vec3::Z),
+            to_world: *to_world,
             to_local: to_world.inverse(),
             irradiance: Box::new(irradiance),
             scale,
@@ -89,6 +91,31 @@ impl Projector {
         }
         let weight = e * (PI * self.scale / (p_l.z * p_l.z * cos));
         Some(EmitterSample { wi, dist, pdf: 1.0, weight, support: Support::Delta })
+    }
+
+    /// Where the pinhole is.
+    pub fn position(&self) -> Vec3 {
+        self.position
+    }
+
+    /// A direction of the light leaving the pinhole, for particle tracing: the image point
+    /// uniform on the plane z = 1 (area A = 4 tan φx tan φy, density 1/A), and the weight
+    /// I(ω)/p(ω), I the intensity [`sample_direction`](Self::sample_direction) gives at unit
+    /// distance and p(ω) = |q|²/(A·|a × b|·|n·ω|) the density of the direction through world
+    /// point q (a, b the images of the plane's axes, n its world normal): π·scale·E(uv)·A for
+    /// a rigid `to_world`, so that the rays' mean weight is [`flux`](Self::flux).
+    pub fn sample_emission(&self, u: Vec2) -> Option<(Vec3, Spectrum)> {
+        let t = self.tan_half;
+        let q = Vec3::new((1.0 - 2.0 * u.x) * t.x, (1.0 - 2.0 * u.y) * t.y, 1.0);
+        let w = self.to_world.vector(q);
+        let dist2 = w.length_squared();
+        let d = w / dist2.sqrt();
+        let plane = self.to_world.vector(Vec3::X).cross(self.to_world.vector(Vec3::Y));
+        let area = 4.0 * t.x * t.y;
+        let pdf = dist2 / (area * plane.dot(d).abs());
+        let s = self.sample_direction(self.position + d)?;
+        let weight = s.weight / pdf;
+        (is_positive(pdf) && weight.is_finite()).then_some((d, weight))
     }
 
     /// Φ = π·scale·Ē·4 tan φx tan φy (W, per channel).

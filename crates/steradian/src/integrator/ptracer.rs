@@ -30,7 +30,7 @@
 //! `ptracer`'s).
 //!
 //! Where steradian differs on purpose: only the pinhole `perspective` camera can be connected
-//! to (the render plan refuses other sensors with `ptracer`, the loader `projector` lights);
+//! to (the render plan refuses other sensors with `ptracer`);
 //! lights are chosen uniformly, as Mitsuba chooses them. The standard error of each pixel comes
 //! from the spread of its per-pass sums, the passes being independent. On surfaces whose BSDF
 //! bends its own normal (`normalmap`, `bumpmap`) steradian's light paths evaluate the BSDF

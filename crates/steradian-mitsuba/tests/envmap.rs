@@ -256,7 +256,7 @@ fn bad_envmaps_are_located_errors() {
         ),
         (
             r#"<emitter type="envmap"><string name="filename" value="envmap/make_assets.py"/></emitter>"#,
-            "not a PNG, JPEG, OpenEXR or Radiance",
+            "not a PNG, JPEG, OpenEXR, Radiance RGBE",
         ),
         (
             r#"<emitter type="envmap"><string name="filename" value="envmap/uniform.exr"/></emitter>

@@ -206,7 +206,7 @@ fn missing_and_corrupt_images() {
         &body.replace("nowhere.png", "text.xml"),
         7,
         3,
-        &["text.xml", "not a PNG, JPEG, OpenEXR or Radiance RGBE"],
+        &["text.xml", "not a PNG, JPEG, OpenEXR, Radiance RGBE"],
     );
 }
 

@@ -266,5 +266,5 @@ fn structural_errors() {
         35,
         "strictly increasing",
     );
-    check(&err("<scene version=\"3.0.0\">\n<bsdf type=\"d\"><spectrum name=\"r\" filename=\"a.spd\"/></bsdf>\n</scene>"), 2, 35, "not supported yet");
+    check(&err("<scene version=\"3.0.0\">\n<bsdf type=\"d\"><spectrum name=\"r\" filename=\"a.spd\"/></bsdf>\n</scene>"), 2, 35, "cannot read spectrum file");
 }

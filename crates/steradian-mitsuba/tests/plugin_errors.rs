@@ -544,6 +544,36 @@ fn twosided_with_three_bsdfs() {
     check(&err(&xml), 2, 1, &["twosided", "one or two nested BSDFs, got 3"]);
 }
 
+/// `twosided` around a BSDF that transmits is refused at the nested BSDF, as Mitsuba 3.9.1
+/// refuses it ("only materials without a transmission component can be nested"); the
+/// same list loads where Mitsuba loads it (a principled BSDF with `spec_trans` 0, a plastic).
+#[test]
+fn twosided_around_transmission() {
+    let refused = [
+        "<bsdf type=\"dielectric\"/>",
+        "<bsdf type=\"thindielectric\"/>",
+        "<bsdf type=\"roughdielectric\"/>",
+        "<bsdf type=\"null\"/>",
+        "<bsdf type=\"mask\"><bsdf type=\"diffuse\"/></bsdf>",
+        "<bsdf type=\"principledthin\"/>",
+        "<bsdf type=\"principled\"><float name=\"spec_trans\" value=\"0.5\"/></bsdf>",
+        "<bsdf type=\"blendbsdf\"><float name=\"weight\" value=\"0.5\"/><bsdf type=\"diffuse\"/><bsdf type=\"dielectric\"/></bsdf>",
+    ];
+    for inner in refused {
+        let xml = scene(&format!("<bsdf type=\"twosided\">\n  {inner}\n</bsdf>"));
+        check(&err(&xml), 3, 3, &["twosided:", "transmits light"]);
+    }
+    for inner in [
+        "<bsdf type=\"principled\"><float name=\"spec_trans\" value=\"0\"/></bsdf>",
+        "<bsdf type=\"principled\"/>",
+        "<bsdf type=\"roughplastic\"/>",
+    ] {
+        let xml = full_scene(&format!("<bsdf type=\"twosided\" id=\"t\">{inner}</bsdf>"));
+        load_string(&xml, Path::new("ok.xml"), Path::new("."), &[])
+            .unwrap_or_else(|e| panic!("{inner}: {e}"));
+    }
+}
+
 #[test]
 fn negative_max_depth() {
     let xml = scene(

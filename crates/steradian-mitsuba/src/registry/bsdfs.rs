@@ -378,6 +378,16 @@ fn twosided(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     if built.iter().any(|b| matches!(b, Bsdf::TwoSided(_))) {
         return Err(LoadError::at(&node.pos, "twosided: a nested twosided BSDF makes no sense"));
     }
+    if let Some(c) = built.iter().position(transmits) {
+        return Err(LoadError::at(
+            children[c].pos(),
+            format!(
+                "twosided: {} transmits light, and only BSDFs without transmission can be two-sided \
+                 (as in Mitsuba 3.9.1; glass, masks and null surfaces are two-sided already)",
+                children[c].node.desc()
+            ),
+        ));
+    }
     match <[Bsdf; 1]>::try_from(built.clone()) {
         Ok([one]) => Ok(Bsdf::TwoSided(TwoSided::new(one.clone(), one))),
         Err(_) => match <[Bsdf; 2]>::try_from(built) {
@@ -387,6 +397,25 @@ fn twosided(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
                 format!("twosided: expects one or two nested BSDFs, got {}", v.len()),
             )),
         },
+    }
+}
+
+/// Whether Mitsuba 3.9.1 gives the BSDF a transmission or null lobe, which its `twosided`
+/// refuses: the dielectrics, `mask` and `null`, `principledthin`, `hair`, `principled` with
+/// a `spec_trans` that is not 0, and the wrappers of these (checked against Mitsuba).
+fn transmits(b: &Bsdf) -> bool {
+    match b {
+        Bsdf::Dielectric(_)
+        | Bsdf::ThinDielectric(_)
+        | Bsdf::RoughDielectric(_)
+        | Bsdf::Mask(_)
+        | Bsdf::PrincipledThin(_)
+        | Bsdf::Hair(_) => true,
+        Bsdf::Principled(p) => p.spec_trans != Texture::Constant(Spectrum::ZERO),
+        Bsdf::BlendBsdf(b) => transmits(&b.bsdf0) || transmits(&b.bsdf1),
+        Bsdf::BumpMap(b) => transmits(&b.nested),
+        Bsdf::NormalMap(b) => transmits(&b.nested),
+        _ => false,
     }
 }
 

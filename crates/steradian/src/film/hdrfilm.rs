@@ -408,20 +408,8 @@ impl Film {
     pub fn develop_stderr(&self) -> Image {
         let mut data = Vec::with_capacity(self.data.len() * 3);
         for p in &self.data {
-            if !(p.w > 0.0 && p.w2 > 0.0) {
-                data.extend([0.0f32; 3]);
-                continue;
-            }
-            let n_eff = p.w * p.w / p.w2;
-            if n_eff <= 1.0 + 1e-9 {
-                data.extend([0.0f32; 3]);
-                continue;
-            }
-            for c in 0..3 {
-                let m = p.wl[c] / p.w;
-                let v = (p.wl2[c] / p.w - m * m).max(0.0);
-                data.push((v / (n_eff - 1.0)).sqrt() as f32);
-            }
+            let var = p.mean_variance().unwrap_or([0.0; 3]);
+            data.extend(var.map(|v| v.sqrt() as f32));
         }
         Image { width: self.width, height: self.height, data }
     }

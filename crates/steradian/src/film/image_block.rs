@@ -48,6 +48,24 @@ impl PixelAccum {
         self.w2 += o.w2;
     }
 
+    /// The variance of the weighted mean per channel, s²/n: s² = n/(n − 1)·(mean of L² −
+    /// mean²), the weighted sample variance over the effective sample count n = (Σw)²/Σw²;
+    /// `None` without weight or with n ≤ 1 (one sample says nothing of the spread).
+    #[inline]
+    pub fn mean_variance(&self) -> Option<[f64; 3]> {
+        if !(self.w > 0.0 && self.w2 > 0.0) {
+            return None;
+        }
+        let n_eff = self.w * self.w / self.w2;
+        if n_eff <= 1.0 + 1e-9 {
+            return None;
+        }
+        Some(std::array::from_fn(|c| {
+            let m = self.wl[c] / self.w;
+            (self.wl2[c] / self.w - m * m).max(0.0) / (n_eff - 1.0)
+        }))
+    }
+
     /// The weighted mean `Σw·L / Σw` (0 when `Σw = 0`; filters with negative lobes can leave
     /// `Σw < 0` in a pixel with few samples, which is divided as Mitsuba divides it).
     #[inline]

@@ -151,18 +151,13 @@ struct PilotPixel {
 impl PilotPixel {
     fn of(reps: &[PixelAccum; REPLICATES]) -> PilotPixel {
         let means = reps.map(|p| (p.w > 0.0).then(|| p.mean()));
-        // the sample variance s² = n/(n − 1)·(mean of L² − mean²) over the effective count
-        // n = (Σw)²/Σw², and s²/n the variance of the mean
+        // each replicate's variance of its mean (its samples weigh 1 each: n is their count)
         let (mut sum, mut count) = ([0.0; 3], 0usize);
-        for (p, m) in reps.iter().zip(&means) {
-            let Some(m) = m else { continue };
-            let n = p.w * p.w / p.w2;
-            if n > 1.5 {
-                for c in 0..3 {
-                    sum[c] += ((p.wl2[c] / p.w - m[c] * m[c]) / (n - 1.0)).max(0.0);
-                }
-                count += 1;
+        for v in reps.iter().filter_map(PixelAccum::mean_variance) {
+            for c in 0..3 {
+                sum[c] += v[c];
             }
+            count += 1;
         }
         let spread = (count > 0).then(|| sum.map(|s| s / count as f64));
         PilotPixel { means, spread }
@@ -280,15 +275,13 @@ fn densities(
             let reps: Vec<&[f64; 3]> = pixel.means.iter().flatten().collect();
             let n = reps.len() as f64;
             (reps.len() >= 2).then(|| {
-                let relative = |c: usize, var: f64| {
-                    let mean = reps.iter().map(|m| m[c]).sum::<f64>() / n;
-                    var / (mean * mean + floor2)
-                };
+                let mean: [f64; 3] =
+                    std::array::from_fn(|c| reps.iter().map(|m| m[c]).sum::<f64>() / n);
+                let relative = |c: usize, var: f64| var / (mean[c] * mean[c] + floor2);
                 let between = (0..3)
                     .map(|c| {
-                        let mean = reps.iter().map(|m| m[c]).sum::<f64>() / n;
                         let var =
-                            reps.iter().map(|m| (m[c] - mean).powi(2)).sum::<f64>() / (n - 1.0);
+                            reps.iter().map(|m| (m[c] - mean[c]).powi(2)).sum::<f64>() / (n - 1.0);
                         relative(c, var)
                     })
                     .sum::<f64>()

@@ -20,14 +20,21 @@ fn scene_with(from: &str, to: &str) -> steradian::render::Job {
     common::reference_scene_with("ptracer.xml", from, to)
 }
 
+/// `reference/{name}.xml` passes Mitsuba's render-test rule against its Mitsuba `ptracer`
+/// reference, and its image mean is within 4 standard errors of the reference's.
+#[track_caller]
+fn matches_mitsuba(name: &str, label: &str) {
+    let job = steradian_mitsuba::load_file(&data(&format!("{name}.xml")), &[])
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert!(z_test_against(&job, SPP, name, label).passes());
+    let mean_z = common::image_mean_z(&job, SPP, name, 4096);
+    eprintln!("{label}, image mean: z = {mean_z:.2}");
+    assert!(mean_z < 4.0, "image mean off by {mean_z:.2} standard errors");
+}
+
 #[test]
 fn ptracer_matches_mitsuba() {
-    let job =
-        steradian_mitsuba::load_file(&data("ptracer.xml"), &[]).unwrap_or_else(|e| panic!("{e}"));
-    assert!(z_test_against(&job, SPP, "ptracer", "ptracer").passes());
-    let mean_z = common::image_mean_z(&job, SPP, "ptracer", 4096);
-    eprintln!("ptracer image mean: z = {mean_z:.2}");
-    assert!(mean_z < 4.0, "image mean off by {mean_z:.2} standard errors");
+    matches_mitsuba("ptracer", "ptracer");
 }
 
 /// Light paths through a rough glass sphere (refractions in and out, connections from inside
@@ -36,12 +43,7 @@ fn ptracer_matches_mitsuba() {
 /// 7.2 standard errors.
 #[test]
 fn ptracer_through_glass_matches_mitsuba() {
-    let job = steradian_mitsuba::load_file(&data("ptracer-glass.xml"), &[])
-        .unwrap_or_else(|e| panic!("{e}"));
-    assert!(z_test_against(&job, SPP, "ptracer-glass", "ptracer through glass").passes());
-    let mean_z = common::image_mean_z(&job, SPP, "ptracer-glass", 4096);
-    eprintln!("ptracer through glass, image mean: z = {mean_z:.2}");
-    assert!(mean_z < 4.0, "image mean off by {mean_z:.2} standard errors");
+    matches_mitsuba("ptracer-glass", "ptracer through glass");
 }
 
 #[test]
@@ -69,12 +71,7 @@ fn hidden_emitters_or_a_bounce_less_fail() {
 /// Mitsuba 3.9.1's Mitsuba test scene `various_emitters` has one) match Mitsuba's `ptracer`.
 #[test]
 fn ptracer_from_projectors_matches_mitsuba() {
-    let job = steradian_mitsuba::load_file(&data("ptracer-projector.xml"), &[])
-        .unwrap_or_else(|e| panic!("{e}"));
-    assert!(z_test_against(&job, SPP, "ptracer-projector", "ptracer from projectors").passes());
-    let mean_z = common::image_mean_z(&job, SPP, "ptracer-projector", 4096);
-    eprintln!("ptracer from projectors, image mean: z = {mean_z:.2}");
-    assert!(mean_z < 4.0, "image mean off by {mean_z:.2} standard errors");
+    matches_mitsuba("ptracer-projector", "ptracer from projectors");
 }
 
 /// The image means of `scene` (a reference scene whose `integrator` default names it) with

@@ -139,6 +139,7 @@ fn parse_spectrum(
     within_emitter: bool,
     resolve: &dyn Fn(&str) -> PathBuf,
 ) -> Result<SpectrumValue, LoadError> {
+    let role = SpectrumRole::of(name, within_emitter);
     match (attrs.get("value"), attrs.get("filename")) {
         (Some(_), Some(_)) | (None, None) => {
             Err(attrs
@@ -147,11 +148,9 @@ fn parse_spectrum(
         (None, Some(a)) => {
             let path = resolve(&a.value);
             let (wl, vals) = read_spd(&path).map_err(|m| LoadError::at(&a.pos, m))?;
-            let role = SpectrumRole::of(name, within_emitter);
             Ok(SpectrumValue::Rgb(spectrum::wavelength_list_to_rgb(&wl, &vals, role)))
         }
         (Some(a), None) => {
-            let role = SpectrumRole::of(name, within_emitter);
             let toks = tokenize(&a.value);
             if toks.len() == 1 && !toks[0].contains(':') {
                 let v = parse_f64(toks[0]).ok_or_else(|| {

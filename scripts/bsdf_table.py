@@ -41,6 +41,11 @@ CONFIGS = {
          "diffuse_transmittance_sampling_rate": 0.3,
          "diffuse_reflectance_sampling_rate": 0.8},
     ],
+    # the synthetic RGL-layout files of scripts/make_measured_bsdf.py
+    "measured": [
+        {"filename": "crates/steradian/src/bsdf/testdata/measured_iso_rgb.bsdf"},
+        {"filename": "crates/steradian/src/bsdf/testdata/measured_aniso_rgb.bsdf"},
+    ],
     # in the hair frame y runs along the fibre and z is the normal
     "hair": [
         {},

@@ -50,10 +50,10 @@ fn unknown_shape_type() {
 #[test]
 fn unknown_bsdf_type() {
     check(
-        &err(&scene("<bsdf type=\"measured\"/>")),
+        &err(&scene("<bsdf type=\"polarizer\"/>")),
         2,
         1,
-        &["the Mitsuba 3 bsdf plugin 'measured' is not supported by steradian", "diffuse"],
+        &["the Mitsuba 3 bsdf plugin 'polarizer' is not supported by steradian", "diffuse"],
     );
     // Nested in a shape, and nested in a twosided BSDF.
     let xml = scene("<shape type=\"sphere\">\n  <bsdf type=\"plastik\"/>\n</shape>");
@@ -68,7 +68,7 @@ fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
     for (tag, ty) in [
         ("shape", "ellipsoids"),
         ("shape", "sdfgrid"),
-        ("bsdf", "measured"),
+        ("bsdf", "measured_polarized"),
         ("bsdf", "polarizer"),
         ("emitter", "timed_sunsky"),
         ("integrator", "stokes"),

@@ -1,6 +1,6 @@
 //! BSDF plugins: `diffuse`, `twosided`, `conductor`, `roughconductor`, `dielectric`,
 //! `thindielectric`, `roughdielectric`, `plastic`, `roughplastic`, `mask`, `blendbsdf`,
-//! `bumpmap`, `normalmap`, `null`, `pplastic`, `principled`, `principledthin`, `hair`, and steradian's
+//! `bumpmap`, `normalmap`, `null`, `pplastic`, `principled`, `principledthin`, `hair`, `measured`, and steradian's
 //! own `phong` and `merl`. Parameters and defaults are Mitsuba 3's (see each plugin's
 //! documentation in `steradian::bsdf`). Reflectances and transmittances (`phong`'s too),
 //! `mask`'s `opacity`, `blendbsdf`'s `weight` and the principled materials' parameters take a
@@ -14,7 +14,7 @@ use steradian::bsdf::{
     PrincipledThinSamplingRates, RoughConductor, RoughDielectric, RoughPlastic, ThinDielectric,
     TwoSided,
 };
-use steradian::bsdf::{Merl, MerlTable, Phong};
+use steradian::bsdf::{Measured, MeasuredTables, Merl, MerlTable, Phong};
 use steradian::texture::Texture;
 use steradian::Spectrum;
 
@@ -194,6 +194,7 @@ pub(super) const BSDFS: &Plugins<BuildBsdf> = &[
     ("roughplastic", roughplastic),
     ("phong", phong),
     ("merl", merl),
+    ("measured", measured),
     ("mask", mask),
     ("blendbsdf", blendbsdf),
     ("bumpmap", bumpmap),
@@ -575,6 +576,19 @@ fn merl(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
         LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
     })?;
     Ok(Bsdf::Merl(Merl::new(table)))
+}
+
+fn measured(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
+    let p = &node.props;
+    let file = p
+        .get_string("filename")?
+        .ok_or_else(|| at(node)("missing 'filename' (the material's RGB .bsdf file)".into()))?;
+    let path = b.resolve_path(node, &file);
+    // errors reading the file are placed at its `filename`
+    let tables = MeasuredTables::read(&path).map_err(|m| {
+        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
+    })?;
+    Ok(Bsdf::Measured(Measured::new(tables)))
 }
 
 fn mask(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {

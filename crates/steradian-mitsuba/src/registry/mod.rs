@@ -237,10 +237,9 @@ pub(crate) type Plugins<F> = [(&'static str, F)];
 /// - `sggx`: Mitsuba 3.9.1 samples it from a rotated copy of its matrix (the local frame is
 ///   built as B·S·Bᵀ where its density uses Bᵀ·S·B; upstream issue 1728), so its images are
 ///   biased and no reference could be matched without copying the error.
-/// - `measured`: RGL's tabulated BSDFs; no data file to test against here.
 /// - `sdfgrid`, `ellipsoids`, `ellipsoidsmesh`.
 pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
-    ("bsdf", &["measured", "measured_polarized", "polarizer", "retarder"]),
+    ("bsdf", &["measured_polarized", "polarizer", "retarder"]),
     ("emitter", &["timed_sunsky"]),
     ("shape", &["sdfgrid", "ellipsoids", "ellipsoidsmesh"]),
     ("film", &["specfilm"]),

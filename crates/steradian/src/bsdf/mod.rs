@@ -16,6 +16,7 @@ pub mod fresnel;
 mod hair;
 pub mod ior;
 mod mask;
+mod measured;
 mod merl;
 pub mod microfacet;
 mod normalmap;
@@ -28,6 +29,7 @@ mod principledthin;
 mod roughconductor;
 mod roughdielectric;
 mod roughplastic;
+mod tensor_file;
 mod thindielectric;
 mod twosided;
 
@@ -38,6 +40,7 @@ pub use dielectric::Dielectric;
 pub use diffuse::Diffuse;
 pub use hair::{Hair, HairAbsorption};
 pub use mask::Mask;
+pub use measured::{Measured, MeasuredTables};
 pub use merl::{Merl, MerlTable};
 pub use microfacet::{MicrofacetDistribution, MicrofacetKind};
 pub use normalmap::NormalMap;
@@ -170,6 +173,7 @@ pub enum Bsdf {
     PrincipledThin(PrincipledThin),
     Phong(Phong),
     Merl(Merl),
+    Measured(Measured),
     Mask(Mask),
     BlendBsdf(BlendBsdf),
     BumpMap(BumpMap),
@@ -195,6 +199,7 @@ macro_rules! dispatch {
             Bsdf::PrincipledThin($b) => $e,
             Bsdf::Phong($b) => $e,
             Bsdf::Merl($b) => $e,
+            Bsdf::Measured($b) => $e,
             Bsdf::Mask($b) => $e,
             Bsdf::BlendBsdf($b) => $e,
             Bsdf::BumpMap($b) => $e,
@@ -259,16 +264,17 @@ impl Bsdf {
         }
     }
 
-    /// Whether the BSDF bends its own normal (`bumpmap`, `normalmap`, or a wrapper holding
-    /// one): its value then depends on which direction is the viewer's (the flip of invalid
-    /// normals and the shadowing term see the viewer and the light differently), so a light
-    /// path must evaluate it with the viewer's direction as `wo` (`integrator/ptracer.rs`).
-    pub fn bends_normal(&self) -> bool {
+    /// Whether the BSDF's value depends on which of its two directions is the viewer's: one
+    /// that bends its own normal (`bumpmap`, `normalmap`: the flip of invalid normals and the
+    /// shadowing term see the viewer and the light differently), `measured` (tabulated over
+    /// the viewer's direction), or a wrapper holding one. A light path must evaluate it with
+    /// the viewer's direction as `wo` (`integrator/ptracer.rs`).
+    pub fn depends_on_viewer(&self) -> bool {
         match self {
-            Bsdf::BumpMap(_) | Bsdf::NormalMap(_) => true,
-            Bsdf::Mask(b) => b.nested.bends_normal(),
-            Bsdf::BlendBsdf(b) => b.bsdf0.bends_normal() || b.bsdf1.bends_normal(),
-            Bsdf::TwoSided(b) => b.front.bends_normal() || b.back.bends_normal(),
+            Bsdf::BumpMap(_) | Bsdf::NormalMap(_) | Bsdf::Measured(_) => true,
+            Bsdf::Mask(b) => b.nested.depends_on_viewer(),
+            Bsdf::BlendBsdf(b) => b.bsdf0.depends_on_viewer() || b.bsdf1.depends_on_viewer(),
+            Bsdf::TwoSided(b) => b.front.depends_on_viewer() || b.back.depends_on_viewer(),
             _ => false,
         }
     }
@@ -285,7 +291,7 @@ impl Bsdf {
             | Bsdf::PPlastic(_)
             | Bsdf::Principled(_)
             | Bsdf::PrincipledThin(_) => true,
-            Bsdf::Phong(_) | Bsdf::Merl(_) | Bsdf::Hair(_) => true,
+            Bsdf::Phong(_) | Bsdf::Merl(_) | Bsdf::Measured(_) | Bsdf::Hair(_) => true,
             Bsdf::Conductor(_) | Bsdf::Dielectric(_) | Bsdf::ThinDielectric(_) => false,
             Bsdf::TwoSided(b) => b.has_smooth_lobe(),
             Bsdf::Mask(b) => b.has_smooth_lobe(),

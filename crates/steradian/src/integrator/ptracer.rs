@@ -78,7 +78,7 @@ impl Default for ParticleTracer {
 const RR_MAX_CONTINUE: f32 = 0.95;
 
 /// The share of a light path's directions drawn uniformly over the sphere at surfaces whose
-/// BSDF bends its normal ([`ParticleTracer::next_direction`]).
+/// BSDF depends on which direction is the viewer's ([`ParticleTracer::next_direction`]).
 const DEFENSIVE_FRACTION: f32 = 0.25;
 
 impl ParticleTracer {
@@ -98,7 +98,8 @@ impl ParticleTracer {
     /// radiance factor at a refraction). `wi` and `weight` of the result are those; `pdf`,
     /// `lobe` and `eta` are the sample's.
     ///
-    /// A BSDF that bends its normal is not symmetric in its two directions: its value is
+    /// A BSDF whose value depends on which direction is the viewer's (one that bends its
+    /// normal, a measured one) is not symmetric in its two directions: its value is
     /// evaluated again with the direction the light goes next as the viewer's, and a quarter
     /// of the directions are drawn uniformly over the sphere (one-sample MIS with the BSDF's
     /// own sampling, which, seeing the light's direction as the viewer's, leaves out some
@@ -115,7 +116,7 @@ impl ParticleTracer {
         wl: glam::Vec3,
         s: &mut PixelSampler,
     ) -> Option<BsdfSample> {
-        if !bsdf.bends_normal() {
+        if !bsdf.depends_on_viewer() {
             let bs = bsdf.sample(sp, wl, s.next_1d(), s.next_2d())?;
             return Some(BsdfSample { weight: bs.weight * (bs.eta * bs.eta), ..bs });
         }

@@ -1,6 +1,7 @@
 //! Random numbers, samplers and warps from the unit square to the domains light is
 //! integrated over.
 
+pub mod marginal_2d;
 mod pcg32;
 pub mod piecewise_constant;
 mod sampler;

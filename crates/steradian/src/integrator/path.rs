@@ -55,6 +55,10 @@
 //! - Light sampling alone at the last vertex: veach (`max_depth` 3) 6.5 % less time at the same
 //!   relative variance, 15.5 % at `max_depth` 2 (2026-12-02, AMD EPYC, 2 cores;
 //!   `2026-12-02-last-vertex.md`).
+//! - A vertex's light sample continues the Sobol block of the BSDF direction that led there
+//!   (dimensions (2, 3)), so one bounce of indirect light is one 4-D point: relMSE at 16 spp
+//!   2.5 % lower on cornell, 4.8 % on veach, equal on materials (2026-12-07, AMD EPYC, 2 cores;
+//!   `benches/results/2026-12-07-amd-epyc.md`).
 
 use glam::Vec3;
 

@@ -19,7 +19,9 @@ use steradian::texture::Texture;
 use steradian::Spectrum;
 
 use super::textures::{self, albedo_param, scalar_param, texture_param};
-use super::{at, at_param, check_non_negative, lookup, Builder, Plugins};
+use super::{
+    at, at_filename, at_param, check_non_negative, lookup, required_string, Builder, Plugins,
+};
 use crate::error::LoadError;
 use crate::properties::PropertyValue;
 use crate::tree::{ObjectTag, PluginNode};
@@ -570,24 +572,13 @@ fn merl(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let file = p
         .get_string("filename")?
         .ok_or_else(|| at(node)("missing 'filename' (the MERL .binary file)".into()))?;
-    let path = b.resolve_path(node, &file);
-    // errors reading the file are placed at its `filename`
-    let table = MerlTable::read(&path).map_err(|m| {
-        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
-    })?;
+    let table = MerlTable::read(&b.resolve_path(node, &file)).map_err(at_filename(node))?;
     Ok(Bsdf::Merl(Merl::new(table)))
 }
 
 fn measured(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
-    let p = &node.props;
-    let file = p
-        .get_string("filename")?
-        .ok_or_else(|| at(node)("missing 'filename' (the material's RGB .bsdf file)".into()))?;
-    let path = b.resolve_path(node, &file);
-    // errors reading the file are placed at its `filename`
-    let tables = MeasuredTables::read(&path).map_err(|m| {
-        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
-    })?;
+    let file = required_string(node, "filename", " (the material's RGB .bsdf file)")?;
+    let tables = MeasuredTables::read(&b.resolve_path(node, &file)).map_err(at_filename(node))?;
     Ok(Bsdf::Measured(Measured::new(tables)))
 }
 

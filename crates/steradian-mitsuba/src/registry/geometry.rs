@@ -14,7 +14,7 @@ use steradian::shape::{
     DEFAULT_FLIP_TEX_COORDS,
 };
 
-use super::{lookup, AttributeSource, Builder, MeshAttributes, Plugins};
+use super::{at_filename, lookup, AttributeSource, Builder, MeshAttributes, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
@@ -58,16 +58,6 @@ fn shape_err(node: &PluginNode) -> impl Fn(ShapeError) -> LoadError + '_ {
     move |e| LoadError::at(&node.pos, format!("{}: {e}", node.desc()))
 }
 
-/// An error reading a mesh file, placed at its `filename`.
-fn mesh_err(node: &PluginNode) -> impl Fn(ShapeError) -> LoadError + '_ {
-    move |e| {
-        LoadError::at(
-            node.props.position("filename").unwrap_or(&node.pos),
-            format!("{}: {e}", node.desc()),
-        )
-    }
-}
-
 /// The mesh file named by the required string property `filename`.
 fn mesh_file(s: &ShapeArgs) -> Result<PathBuf, LoadError> {
     let node = s.node;
@@ -89,9 +79,9 @@ fn mesh(
     data: Result<MeshData, ShapeError>,
     face_normals: bool,
 ) -> Result<Shape, LoadError> {
-    let data = data.map_err(mesh_err(s.node))?;
-    let mesh =
-        Mesh::from_data(data, &s.to_world, s.flip, face_normals).map_err(mesh_err(s.node))?;
+    let data = data.map_err(at_filename::<ShapeError>(s.node))?;
+    let mesh = Mesh::from_data(data, &s.to_world, s.flip, face_normals)
+        .map_err(at_filename::<ShapeError>(s.node))?;
     Ok(Shape::Mesh(mesh))
 }
 
@@ -108,7 +98,8 @@ fn obj(s: &ShapeArgs) -> Result<Shape, LoadError> {
 fn ply(s: &ShapeArgs) -> Result<Shape, LoadError> {
     let path = mesh_file(s)?;
     let face_normals = face_normals(s.node)?;
-    let (data, list) = read_ply_with_attributes(&path).map_err(mesh_err(s.node))?;
+    let (data, list) =
+        read_ply_with_attributes(&path).map_err(at_filename::<ShapeError>(s.node))?;
     // the triangles are copied for the textures only when the file has attributes
     let indices = if list.is_empty() { Arc::from([]) } else { data.indices.as_slice().into() };
     let attributes = MeshAttributes { indices, list };
@@ -141,7 +132,7 @@ fn curve_file(s: &ShapeArgs) -> Result<Vec<Vec<glam::Vec4>>, LoadError> {
         ));
     }
     let path = mesh_file(s)?;
-    read_curves(&path).map_err(mesh_err(s.node))
+    read_curves(&path).map_err(at_filename::<ShapeError>(s.node))
 }
 
 fn rectangle(s: &ShapeArgs) -> Result<Shape, LoadError> {
@@ -224,10 +215,7 @@ fn serialized(
         })?,
     };
     let face_normals = p.get_bool("face_normals")?.unwrap_or(DEFAULT_FACE_NORMALS);
-    // Errors reading the file are placed at its `filename`.
-    let file_err = |e: steradian::shape::ShapeError| {
-        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {e}", node.desc()))
-    };
-    let shape = read_serialized(&path, shape_index).map_err(file_err)?;
-    Mesh::from_data(shape.data, to_world, flip_normals, face_normals).map_err(file_err)
+    let shape = read_serialized(&path, shape_index).map_err(at_filename::<ShapeError>(node))?;
+    Mesh::from_data(shape.data, to_world, flip_normals, face_normals)
+        .map_err(at_filename::<ShapeError>(node))
 }

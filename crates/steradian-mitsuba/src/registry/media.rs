@@ -18,7 +18,7 @@ use steradian::phase::{
 };
 use steradian::Spectrum;
 
-use super::{at, at_param, choice, lookup, required_string, Builder, Plugins};
+use super::{at, at_filename, at_param, choice, lookup, required_string, Builder, Plugins};
 use crate::error::LoadError;
 use crate::tree::{Child, ObjectTag, PluginNode};
 
@@ -218,9 +218,7 @@ fn gridvolume(b: &Builder, node: &PluginNode) -> Result<Volume, LoadError> {
     let p = &node.props;
     let file = required_string(node, "filename", " (a Mitsuba .vol file)")?;
     let path = b.resolve_path(node, &file);
-    let mut grid = GridVolume::read(&path).map_err(|m| {
-        LoadError::at(p.position("filename").unwrap_or(&node.pos), format!("{}: {m}", node.desc()))
-    })?;
+    let mut grid = GridVolume::read(&path).map_err(at_filename(node))?;
     grid.filter = choice(
         node,
         "filter_type",

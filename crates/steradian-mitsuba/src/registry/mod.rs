@@ -282,6 +282,17 @@ pub(crate) fn required_string(
     })
 }
 
+/// An error reading the file a plugin names, placed at its `filename` property (at the plugin
+/// when the file came from elsewhere).
+pub(crate) fn at_filename<E: std::fmt::Display>(node: &PluginNode) -> impl Fn(E) -> LoadError + '_ {
+    move |e| {
+        LoadError::at(
+            node.props.position("filename").unwrap_or(&node.pos),
+            format!("{}: {e}", node.desc()),
+        )
+    }
+}
+
 /// One of the allowed values of a string property, at the property on error.
 pub(crate) fn choice<T: Copy>(
     node: &PluginNode,

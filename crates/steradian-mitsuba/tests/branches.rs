@@ -98,6 +98,23 @@ fn the_pilot_splits_only_where_it_pays() {
     assert_eq!((out.branches, out.pilot), (Some(DEFAULT_BRANCHES), None));
 }
 
+/// The pilot takes the same pixels and numbers whatever the render's seed, so that renders
+/// with different seeds are replicates of one estimator (the same count): their spread is its
+/// error. The renders themselves still differ.
+#[test]
+fn the_pilot_is_the_same_for_every_seed() {
+    let s =
+        steradian_mitsuba::load_string(&scene(""), Path::new("branches.xml"), Path::new("."), &[])
+            .unwrap();
+    let run = |seed| {
+        render(&s, &RenderOptions { spp: Some(256), seed: Some(seed), ..Default::default() })
+            .unwrap()
+    };
+    let (a, b) = (run(1), run(2));
+    assert!(a.pilot.is_some() && a.pilot == b.pilot, "{:?} {:?}", a.pilot, b.pilot);
+    assert!(a.image().data != b.image().data, "seeds 1 and 2 rendered the same image");
+}
+
 #[test]
 fn branches_out_of_range_are_errors_at_the_property() {
     for bad in [0, -2, 65] {

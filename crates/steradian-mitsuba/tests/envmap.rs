@@ -64,6 +64,41 @@ fn mis_compensation_keeps_the_image() {
     assert!(z.passes(), "{z:?}");
 }
 
+/// Unset, `mis_compensation` is on under `path`, which weighs every light sample against a
+/// BSDF sample (the sky's darker half then has no light-sampling density), and off under
+/// `direct`, as in Mitsuba; the scene's word overrides either.
+#[test]
+fn mis_compensation_defaults_on_under_path_only() {
+    use steradian::emitter::Emitter;
+    use steradian::Vec3;
+    let sensor = common::SENSOR;
+    for (integrator, setting, compensated) in [
+        ("path", "", true),
+        ("direct", "", false),
+        ("path", r#"<boolean name="mis_compensation" value="false"/>"#, false),
+        ("direct", r#"<boolean name="mis_compensation" value="true"/>"#, true),
+    ] {
+        let xml = format!(
+            r#"<scene version="3.0.0"><integrator type="{integrator}"/>
+            <emitter type="envmap"><string name="filename" value="envmap/sky.exr"/>{setting}</emitter>
+            {sensor}</scene>"#
+        );
+        let job = load_inline(&xml);
+        let Emitter::EnvMap(env) = &job.scene.emitters[0] else { panic!("not an envmap") };
+        // directions over the sphere (a Fibonacci lattice) without light-sampling density
+        let n = 4096;
+        let unsampled = (0..n)
+            .filter(|&i| {
+                let z = 1.0 - (2 * i + 1) as f32 / n as f32;
+                let phi = i as f32 * 2.399_963;
+                let r = (1.0 - z * z).sqrt();
+                env.pdf_direction(Vec3::new(r * phi.cos(), r * phi.sin(), z)) == 0.0
+            })
+            .count();
+        assert_eq!(unsampled > n / 10, compensated, "{integrator} {setting}: {unsampled} of {n}");
+    }
+}
+
 /// A rough mirror sphere on a diffuse plane under `sky`, seen by the 24 × 24 box-filtered
 /// camera of `common::SENSOR`.
 fn uniform_scene(sky: &str) -> String {

@@ -358,8 +358,13 @@ fn build_envmap(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadEr
     let p = &node.props;
     let filename = required_string(node, "filename", " (a lat-long image)")?;
     let scale = p.get_float("scale")?.unwrap_or(EnvironmentMap::DEFAULT_SCALE);
-    let mis_compensation =
-        p.get_bool("mis_compensation")?.unwrap_or(EnvironmentMap::DEFAULT_MIS_COMPENSATION);
+    let mis_compensation = p.get_bool("mis_compensation")?.unwrap_or(
+        if b.integrator_type.as_deref() == Some("path") {
+            EnvironmentMap::DEFAULT_MIS_COMPENSATION_UNDER_PATH
+        } else {
+            EnvironmentMap::DEFAULT_MIS_COMPENSATION
+        },
+    );
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
     let at_file = |msg: String| {
         LoadError::at(

@@ -64,6 +64,9 @@ pub(crate) struct Builder {
     pub(crate) sky: Cell<Option<(steradian::emitter::SkyModel, steradian::emitter::SkyLevel)>>,
     /// Work planes that report the daylight factor: where each is declared, and what it is.
     pub(crate) daylight_planes: RefCell<Vec<(crate::SourcePos, String)>>,
+    /// The `type` of the scene's `<integrator>` (its first), known before any emitter is
+    /// built: `envmap`'s default sampling depends on it.
+    pub(crate) integrator_type: Option<String>,
 }
 
 /// What a `mesh_attribute` texture can read where it is built.
@@ -375,6 +378,11 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
         read_mesh_attribute: Cell::new(false),
         sky: Cell::new(None),
         daylight_planes: RefCell::new(Vec::new()),
+        integrator_type: root
+            .children
+            .iter()
+            .find(|c| c.node.tag == ObjectTag::Integrator)
+            .map(|c| c.node.plugin_type.clone()),
     };
     let mut integrator_pos = None;
     let mut integrator = None;

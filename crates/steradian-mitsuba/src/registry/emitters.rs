@@ -11,7 +11,7 @@ use steradian::geometry::Transform;
 use steradian::photometry::{parse_eulumdat, parse_ies, IntensityTable};
 use steradian::{Spectrum, Vec3};
 
-use super::{at, at_param, check_non_negative, lookup, required_string, Plugins};
+use super::{at, at_filename, at_param, check_non_negative, lookup, required_string, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
@@ -366,14 +366,8 @@ fn build_envmap(b: &super::Builder, node: &PluginNode) -> Result<Emitter, LoadEr
         },
     );
     let to_world = p.get_transform("to_world")?.unwrap_or_default();
-    let at_file = |msg: String| {
-        LoadError::at(
-            p.position("filename").unwrap_or(&node.pos),
-            format!("{}: {msg}", node.desc()),
-        )
-    };
-    let image =
-        steradian::texture::read_image(&b.resolve_path(node, &filename)).map_err(at_file)?;
+    let image = steradian::texture::read_image(&b.resolve_path(node, &filename))
+        .map_err(at_filename(node))?;
     let env = EnvironmentMap::new(&filename, image, scale, &to_world, mis_compensation)
         .map_err(at_param(node))?;
     Ok(Emitter::EnvMap(env))

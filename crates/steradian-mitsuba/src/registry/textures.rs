@@ -9,7 +9,8 @@ use steradian::texture::{
 use steradian::Spectrum;
 
 use super::{
-    at, check_non_negative, choice, lookup, required_string, AttributeSource, Builder, Plugins,
+    at, at_filename, check_non_negative, choice, lookup, required_string, AttributeSource, Builder,
+    Plugins,
 };
 use crate::error::{LoadError, LoadWarning};
 use crate::properties::PropertyValue;
@@ -214,13 +215,8 @@ fn bitmap(b: &Builder, node: &PluginNode) -> Result<Texture, LoadError> {
     p.get_bool("accel")?;
     let to_uv = to_uv(node)?;
     let path = b.resolve_path(node, &filename);
-    let at_file = |msg: String| {
-        LoadError::at(
-            p.position("filename").unwrap_or(&node.pos),
-            format!("{}: {msg}", node.desc()),
-        )
-    };
-    let image = read_image(&path).map_err(at_file)?;
+    let at_file = at_filename::<String>(node);
+    let image = read_image(&path).map_err(&at_file)?;
     Ok(Texture::Bitmap(Bitmap::new(&filename, image, raw, filter, wrap, to_uv).map_err(at_file)?))
 }
 

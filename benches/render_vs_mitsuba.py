@@ -38,6 +38,12 @@ image over all seeds; |z_bias| stays within about 3 for an unbiased renderer whe
 reference's own noise is small against the renders'. Scenes steradian cannot load
 yet (e.g. an unknown BSDF plugin) are skipped with the reason.
 
+The speed-up depends on the CPU's vector width, which the report names: Mitsuba's LLVM
+variants trace 16 paths per instruction on a CPU with AVX-512, 8 on one with AVX2 only, and
+steradian one path at a time on both (cornell: 2.15x on a Zen 3 EPYC with AVX2 only,
+2026-12-07; 1.4x to 1.6x on the Xeons and EPYCs of the runs before, those whose flags were
+logged having AVX-512). Compare speed-ups between runs on CPUs of the same width only.
+
 The repository is self-contained: scenes and references are read from
 crates/steradian-mitsuba/tests/reference/.
 """
@@ -45,6 +51,7 @@ import argparse
 import json
 import math
 import os
+import platform
 import re
 import resource
 import shutil
@@ -258,6 +265,27 @@ def fmt_t(x):
     return "-" if x is None else (f"{x:.3f}" if x < 10 else f"{x:.1f}")
 
 
+def cpu_description():
+    """The CPU's model and the SIMD width Mitsuba's LLVM variants run at on it. The speed-up
+    depends on it: Dr.Jit's LLVM backend evaluates 16 paths per instruction where the CPU has
+    AVX-512 (feature avx512vl), 8 with AVX and 4 with SSE 4.2 (drjit-core's rule), while
+    steradian traces one path at a time on any of them."""
+    info = {}
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                key, _, value = line.partition(":")
+                key = key.strip()
+                if key in ("model name", "cpu family", "model", "flags") and key not in info:
+                    info[key] = value.strip()
+    except OSError:
+        return dict(model=platform.processor() or platform.machine(), llvm_lanes=None)
+    flags = set(info.get("flags", "").split())
+    lanes = 16 if "avx512vl" in flags else 8 if "avx" in flags else 4 if "sse4_2" in flags else 1
+    return dict(model=info.get("model name", "?"), family=info.get("cpu family"), cpu_model=info.get("model"),
+                avx512="avx512vl" in flags, llvm_lanes=lanes)
+
+
 def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, log=sys.stderr, pgo=False,
         pairs=1, allocation=None):
     """Runs the benchmark; returns a JSON-able dict (and prints progress to `log`).
@@ -277,7 +305,7 @@ def run(scenes, spp, variants, repeat, threads, seed=0, keep=None, build=True, l
                   loadavg_start=[round(x, 2) for x in os.getloadavg()], scenes=[], skipped=[],
                   libllvm=os.environ.get("DRJIT_LIBLLVM_PATH"), mitsuba_version=mi.__version__,
                   steradian=exe, steradian_build="profile-guided release" if pgo else "release",
-                  allocation=allocation or "default (auto)")
+                  allocation=allocation or "default (auto)", cpu=cpu_description())
     try:
         for name in scenes:
             sname, xml, ref = scene_paths(name)
@@ -359,6 +387,12 @@ def report(res, out=sys.stdout):
       f"{res['spp']} spp, seed {res['seed']}, median of {res['repeat']}, "
       f"{res['threads']} threads on {res['cpu_count']} cores")
     p(f"load average at start {res['loadavg_start']}, at end {res['loadavg_end']}")
+    cpu = res.get("cpu")
+    if cpu:
+        p(f"CPU: {cpu['model']} (family {cpu.get('family')}, model {cpu.get('cpu_model')}), "
+          f"AVX-512 {'yes' if cpu.get('avx512') else 'no'}: Mitsuba's LLVM variants trace "
+          f"{cpu['llvm_lanes']} paths per vector instruction, steradian one path at a time "
+          f"(compare speed-ups only between CPUs of the same width)")
     p(f"steradian: {res.get('steradian_build', 'release')} build ({res['steradian']})")
     p("steradian time = whole process (load + render + write); Mitsuba time = warm mi.render() only")
     p("e = mean((a1 - a2)^2 / (ref^2 + 0.01)) / 2, averaged over the pairs of seeds "

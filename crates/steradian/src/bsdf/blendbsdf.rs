@@ -73,6 +73,12 @@ impl BlendBsdf {
         self.bsdf0.null_transmission(sp, wo) * (1.0 - w) + self.bsdf1.null_transmission(sp, wo) * w
     }
 
+    /// The chance that `sample` takes a null lobe: the mix of the two BSDFs' chances.
+    pub fn null_chance(&self, sp: &ShadingPoint, wo: Vec3) -> f32 {
+        let w = self.w(sp);
+        self.bsdf0.null_chance(sp, wo) * (1.0 - w) + self.bsdf1.null_chance(sp, wo) * w
+    }
+
     #[inline]
     pub fn sample(&self, sp: &ShadingPoint, wo: Vec3, u1: f32, u2: Vec2) -> Option<BsdfSample> {
         let w = self.w(sp);

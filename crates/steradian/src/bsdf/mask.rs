@@ -97,6 +97,11 @@ impl Mask {
         Spectrum::splat(1.0 - self.opacity(sp))
     }
 
+    /// The chance that `sample` passes straight through: 1 − opacity.
+    pub fn null_chance(&self, sp: &ShadingPoint) -> f32 {
+        1.0 - self.opacity(sp)
+    }
+
     pub fn has_smooth_lobe(&self) -> bool {
         self.nested.has_smooth_lobe()
     }

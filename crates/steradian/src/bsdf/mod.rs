@@ -69,7 +69,8 @@ pub enum Lobe {
     /// A Dirac delta (mirror, smooth glass): only reachable by sampling.
     Delta,
     /// Straight through, unchanged (Mitsuba's `BSDFFlags::Null`: the `null` BSDF, a `mask`'s
-    /// transparent part): a delta that `volpath` does not count as a scattering event.
+    /// transparent part, a `thindielectric`'s transmission): a delta that `volpath` does not
+    /// count as a scattering event.
     Null,
 }
 
@@ -240,16 +241,33 @@ impl Bsdf {
     }
 
     /// The fraction of light that passes the surface straight through, unscattered (Mitsuba's
-    /// `eval_null_transmission`): 1 − opacity for `mask` (and so 1 for `null`), the mix for
-    /// `blendbsdf`, the facing side's for `twosided`, 0 for every other BSDF. `volpath`'s
-    /// shadow rays cross surfaces with this weight; `path`'s stop at every surface.
+    /// `eval_null_transmission`): 1 − opacity for `mask` (and so 1 for `null`), (1 − R')·
+    /// `specular_transmittance` for `thindielectric`, the mix for `blendbsdf`, the facing
+    /// side's for `twosided`, 0 for every other BSDF. `volpath`'s shadow rays cross surfaces
+    /// with this weight; `path`'s stop at every surface.
     #[inline]
     pub fn null_transmission(&self, sp: &ShadingPoint, wo: Vec3) -> Spectrum {
         match self {
             Bsdf::Mask(b) => b.null_transmission(sp),
+            Bsdf::ThinDielectric(b) => b.null_transmission(sp, wo),
             Bsdf::BlendBsdf(b) => b.null_transmission(sp, wo),
             Bsdf::TwoSided(b) => b.null_transmission(sp, wo),
             _ => Spectrum::ZERO,
+        }
+    }
+
+    /// The chance that [`Bsdf::sample`] takes a null lobe from `wo`: 1 − opacity for `mask`,
+    /// 1 − R' for `thindielectric` (whatever its `specular_transmittance`, which weighs the
+    /// lobe without changing how often it is chosen), the mix for `blendbsdf`, the facing
+    /// side's for `twosided`, 0 for every other BSDF.
+    #[inline]
+    pub fn null_chance(&self, sp: &ShadingPoint, wo: Vec3) -> f32 {
+        match self {
+            Bsdf::Mask(b) => b.null_chance(sp),
+            Bsdf::ThinDielectric(b) => b.null_chance(wo),
+            Bsdf::BlendBsdf(b) => b.null_chance(sp, wo),
+            Bsdf::TwoSided(b) => b.null_chance(sp, wo),
+            _ => 0.0,
         }
     }
 
@@ -257,7 +275,7 @@ impl Bsdf {
     /// be positive).
     pub fn may_pass_light(&self) -> bool {
         match self {
-            Bsdf::Mask(_) => true,
+            Bsdf::Mask(_) | Bsdf::ThinDielectric(_) => true,
             Bsdf::BlendBsdf(b) => b.bsdf0.may_pass_light() || b.bsdf1.may_pass_light(),
             Bsdf::TwoSided(b) => b.front.may_pass_light() || b.back.may_pass_light(),
             _ => false,

@@ -49,6 +49,15 @@ impl TwoSided {
         }
     }
 
+    /// The chance that `sample` takes a null lobe: the facing side's.
+    pub fn null_chance(&self, sp: &ShadingPoint, wo: Vec3) -> f32 {
+        if wo.z >= 0.0 {
+            self.front.null_chance(sp, wo)
+        } else {
+            self.back.null_chance(sp, flip(wo))
+        }
+    }
+
     #[inline]
     pub fn pdf(&self, sp: &ShadingPoint, wo: Vec3, wi: Vec3) -> f32 {
         if wo.z >= 0.0 {

@@ -22,7 +22,8 @@
 //!
 //! **Null surfaces** (Mitsuba 3.9.1's `path`, which zeroes a sample whose path never
 //! scattered): a sample counts only once its path scatters off a non-null lobe (a `null`
-//! surface, a `mask`'s transparent share, passed straight through, do not count), or from the
+//! surface, a `mask`'s transparent share, a `thindielectric`'s transmission, passed straight
+//! through, do not count), or from the
 //! start where camera rays see an environment (`envmap`, `constant`, `sun`) that
 //! `hide_emitters` does not hide. So an emitter with a `null` BSDF (the Mitsuba Blender
 //! add-on's area lights) shows only where something is behind it, and a mask of fractional
@@ -335,8 +336,8 @@ impl Counts for CountChance {
     fn ends_at(&mut self, scene: &Scene, si: &SurfaceInteraction) {
         if self.0 < 1.0 {
             let bsdf = scene.bsdf(si);
-            let null = bsdf.null_transmission(&ShadingPoint::new(si), si.to_local(si.wo));
-            self.0 += (1.0 - self.0) * (1.0 - null.element_sum() / 3.0);
+            let null = bsdf.null_chance(&ShadingPoint::new(si), si.to_local(si.wo));
+            self.0 += (1.0 - self.0) * (1.0 - null);
         }
     }
     #[inline(always)]

@@ -10,6 +10,12 @@
 //!
 //! Light samples and BSDF samples are combined with the power heuristic, each strategy weighted
 //! by its sample count, as Mitsuba 3's `direct` does.
+//!
+//! **Where steradian differs on purpose.** Mitsuba 3.9.1 weighs a light sample of a delta light
+//! (point, spot, directional, projector) by 1 instead of 1/`emitter_samples`, so with
+//! `emitter_samples` = n those lights shine n times too bright (a directional light over a
+//! principled floor at n = 2: Mitsuba's image mean twice steradian's, which equals the image
+//! at n = 1). steradian divides every light sample by n (`tests/direct.rs`).
 
 use super::mis::power_heuristic;
 use super::path::EmitterVisibility;

@@ -3,6 +3,8 @@
 //! Mitsuba 3.9.1 counts each of the n samples in full, an image n times too bright, which
 //! steradian does not copy) and a rectangle light, each image mean within its standard error
 //! of the one-sample image's, and the point-lit one against the closed form ρ/π·I·cos θ/r².
+//! Such a scene loads with a warning that says how Mitsuba's image differs; one without a
+//! delta light, or with one light sample, loads without it.
 
 mod common;
 
@@ -59,4 +61,23 @@ fn several_light_samples_render_the_image_of_one() {
         "point light, emitter_samples 4: {m:.5} ± {se:.5}, closed form {expected:.5}, z {z:.2}"
     );
     assert!(z.abs() < 4.0, "{m} against {expected}: z = {z:.2}");
+}
+
+#[test]
+fn several_samples_of_a_delta_light_warn_of_mitsubas_image() {
+    let load = |xml: &str| {
+        steradian_mitsuba::load_string(
+            xml,
+            std::path::Path::new("d.xml"),
+            std::path::Path::new("."),
+            &[],
+        )
+        .unwrap_or_else(|e| panic!("{e}"))
+    };
+    let warned = load(&scene(3, POINT));
+    assert_eq!(warned.warnings.len(), 1, "{:?}", warned.warnings);
+    let w = &warned.warnings[0];
+    assert!(w.contains("d.xml:2:") && w.contains("3 times too bright"), "{w}");
+    assert!(load(&scene(1, POINT)).warnings.is_empty());
+    assert!(load(&scene(3, AREA)).warnings.is_empty());
 }

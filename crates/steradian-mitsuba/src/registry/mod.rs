@@ -484,6 +484,23 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
             "<integrator type=\"ptracer\">: the film's pixel_format asks for an alpha channel, which needs camera samples (Mitsuba's ptracer writes its light-path splat count there): use a pixel_format without alpha",
         ));
     }
+    if let (steradian::integrator::Integrator::Direct(d), Some(pos)) =
+        (&integrator, &integrator_pos)
+    {
+        let delta =
+            b.desc.emitters.iter().any(|e| e.support() == steradian::emitter::Support::Delta);
+        if d.emitter_samples > 1 && delta {
+            let n = d.emitter_samples;
+            b.warn(LoadWarning::at(
+                pos,
+                format!(
+                    "<integrator type=\"direct\">: with emitter_samples = {n}, Mitsuba 3.9.1 renders point, spot, \
+                     directional and projector lights {n} times too bright (it does not divide their samples by \
+                     the count); steradian renders them as one sample does (integrator/direct.rs)"
+                ),
+            ));
+        }
+    }
     sensors::resolve_daylight_factors(&mut b)?;
     b.desc.light_selection = integrator.light_selection();
     let scene = Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))?;

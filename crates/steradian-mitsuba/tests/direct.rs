@@ -65,15 +65,7 @@ fn several_light_samples_render_the_image_of_one() {
 
 #[test]
 fn several_samples_of_a_delta_light_warn_of_mitsubas_image() {
-    let load = |xml: &str| {
-        steradian_mitsuba::load_string(
-            xml,
-            std::path::Path::new("d.xml"),
-            std::path::Path::new("."),
-            &[],
-        )
-        .unwrap_or_else(|e| panic!("{e}"))
-    };
+    let load = |xml: &str| common::load_scene(xml, "d.xml");
     let warned = load(&scene(3, POINT));
     assert_eq!(warned.warnings.len(), 1, "{:?}", warned.warnings);
     let w = &warned.warnings[0];

@@ -24,6 +24,8 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use steradian::bsdf::Bsdf;
+use steradian::emitter::Support;
+use steradian::integrator::Integrator;
 use steradian::param::ParamError;
 use steradian::render::Job;
 use steradian::scene::{Scene, SceneDescription};
@@ -484,11 +486,8 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
             "<integrator type=\"ptracer\">: the film's pixel_format asks for an alpha channel, which needs camera samples (Mitsuba's ptracer writes its light-path splat count there): use a pixel_format without alpha",
         ));
     }
-    if let (steradian::integrator::Integrator::Direct(d), Some(pos)) =
-        (&integrator, &integrator_pos)
-    {
-        let delta =
-            b.desc.emitters.iter().any(|e| e.support() == steradian::emitter::Support::Delta);
+    if let (Integrator::Direct(d), Some(pos)) = (&integrator, &integrator_pos) {
+        let delta = b.desc.emitters.iter().any(|e| e.support() == Support::Delta);
         if d.emitter_samples > 1 && delta {
             let n = d.emitter_samples;
             b.warn(LoadWarning::at(

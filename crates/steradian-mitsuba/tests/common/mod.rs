@@ -132,9 +132,14 @@ pub const SENSOR: &str = r#"<sensor type="perspective"><float name="fov" value="
 /// The red channel's image mean of scene `xml` (named `file` in errors) at 256 i.i.d. samples
 /// per pixel, and its standard error (see [`scene_mean_and_error`]).
 pub fn mean_and_error(xml: &str, file: &str, seed: u64) -> (f64, f64) {
-    let s = steradian_mitsuba::load_string(xml, Path::new(file), Path::new("."), &[])
-        .unwrap_or_else(|e| panic!("{e}"));
-    scene_mean_and_error(&s, seed)
+    scene_mean_and_error(&load_scene(xml, file), seed)
+}
+
+/// The scene text `xml` loaded (called `file` in messages, relative files beside the working
+/// directory); panics with the load error.
+pub fn load_scene(xml: &str, file: &str) -> Job {
+    steradian_mitsuba::load_string(xml, Path::new(file), Path::new("."), &[])
+        .unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// The red channel's image mean of a loaded scene at 256 i.i.d. samples per pixel, and its

@@ -94,7 +94,7 @@ impl Mask {
     /// `eval_null_transmission`).
     #[inline]
     pub fn null_transmission(&self, sp: &ShadingPoint) -> Spectrum {
-        Spectrum::splat(1.0 - self.opacity(sp))
+        Spectrum::splat(self.null_chance(sp))
     }
 
     /// The chance that `sample` passes straight through: 1 − opacity.

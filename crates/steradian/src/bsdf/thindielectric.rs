@@ -80,7 +80,7 @@ impl ThinDielectric {
     /// (1 − R')·`specular_transmittance` (Mitsuba's `eval_null_transmission`).
     #[inline]
     pub fn null_transmission(&self, sp: &ShadingPoint, wo: Vec3) -> Spectrum {
-        self.specular_transmittance.eval(sp.tex()) * (1.0 - self.reflectance(wo.z))
+        self.specular_transmittance.eval(sp.tex()) * self.null_chance(wo)
     }
 
     /// The chance that [`sample`](Self::sample) takes the null (transmission) lobe: 1 − R'.

@@ -23,9 +23,8 @@
 //! **Null surfaces** (Mitsuba 3.9.1's `path`, which zeroes a sample whose path never
 //! scattered): a sample counts only once its path scatters off a non-null lobe (a `null`
 //! surface, a `mask`'s transparent share, a `thindielectric`'s transmission, passed straight
-//! through, do not count), or from the
-//! start where camera rays see an environment (`envmap`, `constant`, `sun`) that
-//! `hide_emitters` does not hide. So an emitter with a `null` BSDF (the Mitsuba Blender
+//! through, do not count), or from the start where camera rays see an environment (`envmap`,
+//! `constant`, `sun`) that `hide_emitters` does not hide. So an emitter with a `null` BSDF (the Mitsuba Blender
 //! add-on's area lights) shows only where something is behind it, and a mask of fractional
 //! opacity a renders at about a² of the opaque surface (a flat masked plane under a point
 //! light: 0.1221 at a = 0.35, as Mitsuba). `volpath` and `direct` have no such rule, in

@@ -3,9 +3,12 @@
 //! Every accessor marks the property as read; [`Properties::check_all_used`] then reports
 //! the first property the plugin never asked for, as Mitsuba does ("unreferenced
 //! property"). Read flags use atomics, so accessors take `&self` and the tree stays
-//! `Send + Sync`.
+//! `Send + Sync`. The names a plugin asked for as values and did not find are kept too, so
+//! that a nested object given under such a name (a `<texture name="intensity">` in a spot
+//! light) is reported as a value that cannot vary, not as an unknown object.
 
 use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
 
 use glam::Vec3;
 use steradian::geometry::Transform;
@@ -77,12 +80,15 @@ pub struct Properties {
     /// How the owner is described in errors, e.g. `<integrator type="path">`.
     owner: String,
     entries: Vec<Entry>,
+    /// Names asked for through a typed accessor and not given as properties, with the type
+    /// asked for (e.g. "float").
+    missing: Mutex<Vec<(String, &'static str)>>,
 }
 
 impl Properties {
     /// Empty properties of the plugin described as `owner` (e.g. `<bsdf type="diffuse">`).
     pub fn new(owner: impl Into<String>) -> Self {
-        Properties { owner: owner.into(), entries: Vec::new() }
+        Properties { owner: owner.into(), entries: Vec::new(), missing: Mutex::default() }
     }
 
     /// How the owning plugin is described in error messages.
@@ -166,6 +172,13 @@ impl Properties {
             .collect()
     }
 
+    /// The type of value (e.g. "float") the plugin asked `name` to be, where it found no such
+    /// property.
+    pub fn asked_as_value(&self, name: &str) -> Option<&'static str> {
+        let missing = self.missing.lock().ok()?;
+        missing.iter().find(|(n, _)| n == name).map(|&(_, expected)| expected)
+    }
+
     /// Errors on the first property that was never read:
     /// `unreferenced property 'foo' in <bsdf type="diffuse">`, at that property.
     pub fn check_all_used(&self, plugin_desc: &str) -> Result<(), LoadError> {
@@ -181,10 +194,15 @@ impl Properties {
     fn typed<T>(
         &self,
         name: &str,
-        expected: &str,
+        expected: &'static str,
         f: impl FnOnce(&PropertyValue) -> Option<T>,
     ) -> Result<Option<T>, LoadError> {
         let Some(e) = self.entries.iter().find(|e| e.name == name) else {
+            if let Ok(mut m) = self.missing.lock() {
+                if !m.iter().any(|(n, _)| n == name) {
+                    m.push((name.to_owned(), expected));
+                }
+            }
             return Ok(None);
         };
         e.used.store(true, Ordering::Relaxed);

@@ -156,6 +156,18 @@ impl PluginNode {
         let desc = self.desc();
         self.props.check_all_used(&desc)?;
         if let Some(c) = self.children.iter().find(|c| !c.is_used()) {
+            let asked = c.name.as_deref().and_then(|n| Some((n, self.props.asked_as_value(n)?)));
+            if let Some((name, expected)) = asked {
+                // Mitsuba 3.9.1: "The parameter 'intensity' cannot be spatially varying"
+                return Err(LoadError::at(
+                    c.pos(),
+                    format!(
+                        "'{name}' of {desc} cannot be spatially varying ({}): give it as a \
+                         value ({expected})",
+                        c.node.desc()
+                    ),
+                ));
+            }
             return Err(LoadError::at(
                 c.pos(),
                 format!("unreferenced object {} in {desc}", c.node.desc()),

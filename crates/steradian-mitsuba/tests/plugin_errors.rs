@@ -699,3 +699,25 @@ fn direct_refuses_both_sample_counts() {
     );
     check(&err(&xml), 3, 1, &["give either 'shading_samples'", "not both"]);
 }
+
+/// A texture given for a value that cannot vary (a spot light's `intensity`) is reported as
+/// such, as Mitsuba does ("cannot be spatially varying"), not as an unknown nested object; a
+/// texture under a name the plugin does not know at all stays "unreferenced".
+#[test]
+fn texture_for_a_single_value_is_named_as_such() {
+    let checkerboard = |name: &str| format!("<texture type=\"checkerboard\" name=\"{name}\"/>");
+    let spot = |child: String| full_scene(&format!("<emitter type=\"spot\">\n{child}\n</emitter>"));
+    let e = err(&spot(checkerboard("intensity")));
+    check(
+        &e,
+        5,
+        1,
+        &[
+            "'intensity' of <emitter type=\"spot\"> cannot be spatially varying",
+            "rgb, spectrum or float",
+        ],
+    );
+    let e = err(&spot(checkerboard("intensty")));
+    check(&e, 5, 1, &["unreferenced object <texture type=\"checkerboard\""]);
+    assert!(!e.message.contains("spatially"), "{e}");
+}

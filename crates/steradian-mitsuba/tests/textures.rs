@@ -288,7 +288,7 @@ fn mistyped_parameters() {
         "<shape type=\"sphere\"><bsdf type=\"roughplastic\">\n  <texture type=\"checkerboard\" name=\"alpha\"/>\n</bsdf></shape>",
         5,
         3,
-        &["unreferenced object <texture type=\"checkerboard\">"],
+        &["'alpha' of <bsdf type=\"roughplastic\"> cannot be spatially varying", "(float)"],
     );
     err("aniso.xml", "<shape type=\"sphere\">\n<bsdf type=\"roughconductor\"><texture type=\"checkerboard\" name=\"alpha_u\"/></bsdf></shape>", 5, 1, &["both 'alpha_u' and 'alpha_v'"]);
     err(

@@ -40,8 +40,11 @@ def run(name, xml, spp=256, ref_spp=2048, passes=16, workdir=WORK):
         print(f'{name:<28} MITSUBA LOAD ERROR {str(e)[:200]}'); return
     imgs = []
     per = ref_spp // passes
-    for k in range(passes):
-        imgs.append(np.array(mi.render(scene, spp=per, seed=100 + k), dtype=np.float64)[..., :3])
+    try:
+        for k in range(passes):
+            imgs.append(np.array(mi.render(scene, spp=per, seed=100 + k), dtype=np.float64)[..., :3])
+    except Exception as e:
+        print(f'{name:<28} MITSUBA RENDER ERROR {str(e)[:200]}'); return
     imgs = np.array(imgs)
     mean = imgs.mean(0); var = imgs.var(0, ddof=1) * per
     out = f'{workdir}/{name}-st.exr'

@@ -137,9 +137,9 @@ def gen(seed):
         if k == "projector":
             emitters.append(f'<emitter type="projector"><transform name="to_world">{look}</transform><float name="scale" value="{f(5,20)}"/>'
                             f'<float name="fov" value="{f(30,60)}"/><texture type="bitmap" name="irradiance"><string name="filename" value="wall.png"/></texture></emitter>')
-        if k == "area_tex":
+        if k == "area_tex":  # a bitmap: Mitsuba's ptracer cannot sample a checkerboard's spectrum
             shapes.append(f'<shape type="rectangle"><transform name="to_world"><scale value="{f(1.5,2.5)}"/><rotate x="1" angle="90"/><translate x="{f(-1,1)}" y="{f(2.5,3.5)}" z="{f(-1,1)}"/></transform>'
-                          f'<emitter type="area"><texture type="checkerboard" name="radiance"><rgb name="color0" value="{rgb(0.3,1)}"/><rgb name="color1" value="{rgb(0.3,1)}"/></texture></emitter></shape>')
+                          f'<emitter type="area"><texture type="bitmap" name="radiance"><string name="filename" value="wall.png"/></texture></emitter></shape>')
         if k == "area_disk":
             shapes.append(f'<shape type="disk"><transform name="to_world"><scale value="{f(0.4,1)}"/><rotate x="1" angle="90"/><translate x="{f(-1,1)}" y="{f(2.5,3.5)}" z="{f(-1,1)}"/></transform>'
                           f'<emitter type="area"><rgb name="radiance" value="{rgb(3,10)}"/></emitter></shape>')

@@ -4,7 +4,9 @@
 //! light returns to it); steradian's image mean meets that closed form within its standard
 //! error under `path`, `volpath` and `direct`. Mitsuba 3.9.1 renders this scene 19 % dark in
 //! red (0.165 against 0.204; `blendbsdf.rs`'s manual), which steradian does not copy; the
-//! same closed form with the mirror left out of the blend (w·L missing) fails.
+//! same closed form with the mirror left out of the blend (w·L missing) fails. Blends that mix
+//! a delta lobe with a smooth one load with a warning that Mitsuba's image differs; blends of
+//! two smooth or two delta BSDFs load without it.
 
 mod common;
 
@@ -55,5 +57,39 @@ fn a_diffuse_and_mirror_blend_under_a_uniform_sky_meets_the_closed_form() {
         );
         assert!(z.abs() < 4.0, "{integrator}: z = {z:.2}");
         assert!((mean - without_mirror) / se > 10.0, "{integrator}: the mirror's share is missing");
+    }
+}
+
+#[test]
+fn blends_of_delta_and_smooth_lobes_warn_of_mitsubas_image() {
+    let warnings = |b0: &str, b1: &str| {
+        let xml = scene("<integrator type=\"path\"/>")
+            .replace("<bsdf type=\"conductor\"/>", b1)
+            .replace(
+                &format!("<bsdf type=\"diffuse\"><rgb name=\"reflectance\" value=\"{RHO_RED}, 0.732, 0.552\"/></bsdf>"),
+                b0,
+            );
+        common::load_scene(&xml, "blend.xml").warnings
+    };
+    let diffuse = "<bsdf type=\"diffuse\"/>";
+    let mirror = "<bsdf type=\"conductor\"/>";
+    for (b0, b1) in [
+        (diffuse, mirror),
+        (mirror, diffuse),
+        (diffuse, "<bsdf type=\"plastic\"/>"),
+        (
+            "<bsdf type=\"roughconductor\"/>",
+            "<bsdf type=\"twosided\">\n<bsdf type=\"conductor\"/></bsdf>",
+        ),
+    ] {
+        let w = warnings(b0, b1);
+        assert_eq!(w.len(), 1, "{b0} + {b1}: {w:?}");
+        assert!(w[0].contains("blend.xml:11:9") && w[0].contains("Mitsuba 3.9.1"), "{}", w[0]);
+    }
+    for (b0, b1) in
+        [(diffuse, "<bsdf type=\"roughplastic\"/>"), (mirror, "<bsdf type=\"dielectric\"/>")]
+    {
+        let w = warnings(b0, b1);
+        assert!(w.is_empty(), "{b0} + {b1}: {w:?}");
     }
 }

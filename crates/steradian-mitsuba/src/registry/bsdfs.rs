@@ -22,7 +22,7 @@ use super::textures::{self, albedo_param, scalar_param, texture_param};
 use super::{
     at, at_filename, at_param, check_non_negative, lookup, required_string, Builder, Plugins,
 };
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 use crate::properties::PropertyValue;
 use crate::tree::{ObjectTag, PluginNode};
 
@@ -592,7 +592,23 @@ fn blendbsdf(b: &Builder, node: &PluginNode) -> Result<Bsdf, LoadError> {
     let weight = albedo_param(b, node, "weight", None)?;
     textures::check_scalar(node, "weight", &weight)?;
     match <[Bsdf; 2]>::try_from(nested_bsdfs(b, node)?) {
-        Ok([b0, b1]) => Ok(Bsdf::BlendBsdf(BlendBsdf::new(weight, b0, b1))),
+        Ok([b0, b1]) => {
+            let blend = BlendBsdf::new(weight, b0, b1);
+            let mixed = |x: &Bsdf, y: &Bsdf| x.has_delta_lobe() && y.has_smooth_lobe();
+            if mixed(&blend.bsdf0, &blend.bsdf1) || mixed(&blend.bsdf1, &blend.bsdf0) {
+                b.warn(LoadWarning::at(
+                    &node.pos,
+                    format!(
+                        "{}: blends a delta lobe (mirror, smooth glass or plastic coating) with a \
+                         smooth one; Mitsuba 3.9.1 renders such blends too dark or too bright \
+                         (its image is not the weighted sum of the two BSDFs' images); \
+                         steradian's is (bsdf/blendbsdf.rs)",
+                        node.desc()
+                    ),
+                ));
+            }
+            Ok(Bsdf::BlendBsdf(blend))
+        }
         Err(v) => Err(at(node)(format!("expects two nested BSDFs, got {}", v.len()))),
     }
 }

@@ -319,6 +319,33 @@ impl Bsdf {
         }
     }
 
+    /// True when some lobe is a Dirac delta that scatters (a mirror, smooth glass, a smooth
+    /// plastic's coating; a null pass-through does not count).
+    pub fn has_delta_lobe(&self) -> bool {
+        match self {
+            Bsdf::Conductor(_)
+            | Bsdf::Dielectric(_)
+            | Bsdf::ThinDielectric(_)
+            | Bsdf::Plastic(_) => true,
+            Bsdf::Diffuse(_)
+            | Bsdf::RoughConductor(_)
+            | Bsdf::RoughDielectric(_)
+            | Bsdf::RoughPlastic(_)
+            | Bsdf::PPlastic(_)
+            | Bsdf::Principled(_)
+            | Bsdf::PrincipledThin(_)
+            | Bsdf::Phong(_)
+            | Bsdf::Merl(_)
+            | Bsdf::Measured(_)
+            | Bsdf::Hair(_) => false,
+            Bsdf::TwoSided(b) => b.front.has_delta_lobe() || b.back.has_delta_lobe(),
+            Bsdf::Mask(b) => b.nested.has_delta_lobe(),
+            Bsdf::BlendBsdf(b) => b.bsdf0.has_delta_lobe() || b.bsdf1.has_delta_lobe(),
+            Bsdf::BumpMap(b) => b.nested.has_delta_lobe(),
+            Bsdf::NormalMap(b) => b.nested.has_delta_lobe(),
+        }
+    }
+
     /// The diffuse reflectance seen from `wo` (Mitsuba's `eval_diffuse_reflectance`, the
     /// `aov` integrator's `albedo`): the diffuse albedo parameter where the model has one
     /// (`diffuse`, the plastics' `diffuse_reflectance`, the principled `base_color`; a bump or

@@ -500,11 +500,47 @@ pub fn build_scene(tree: &SceneNode, base_dir: &Path) -> Result<Job, LoadError> 
             ));
         }
     }
+    if let (Some(m), Some((pos, _))) = (b.desc.camera_medium, &b.sensor_medium) {
+        warn_of_unbounded_camera_medium(&b, m, pos);
+    }
     sensors::resolve_daylight_factors(&mut b)?;
     b.desc.light_selection = integrator.light_selection();
     let scene = Scene::new(b.desc).map_err(|m| LoadError::at(&root.pos, m))?;
     let warnings = b.warnings.into_inner().iter().map(ToString::to_string).collect();
     Ok(Job { scene, integrator, warnings, inputs: b.resolver.files_read() })
+}
+
+/// Warns where the sensors' medium `m` fills all space (no shape has it inside) and light
+/// comes from infinity: no such light crosses an unbounded medium, so steradian renders it
+/// black there, where Mitsuba 3.9.1's `volpath` lets it in.
+fn warn_of_unbounded_camera_medium(b: &Builder, m: u32, pos: &crate::SourcePos) {
+    use steradian::emitter::Emitter;
+    let bounded = b
+        .desc
+        .shapes
+        .iter()
+        .chain(b.desc.groups.iter().flatten())
+        .any(|(_, binding)| binding.interior == Some(m));
+    let at_infinity = b.desc.emitters.iter().any(|e| {
+        matches!(
+            e,
+            Emitter::Constant(_)
+                | Emitter::EnvMap(_)
+                | Emitter::SunSky(_)
+                | Emitter::Sun(_)
+                | Emitter::Directional(_)
+        )
+    });
+    if !bounded && at_infinity {
+        b.warn(LoadWarning::at(
+            pos,
+            "the sensor's medium is no shape's interior, so it fills all space and no light from \
+             infinity (environment, sun, directional light) crosses it: that light does not reach \
+             the camera (Mitsuba 3.9.1's volpath lets it in); to see the sky through fog, bound the \
+             fog by a shape with a null BSDF and the medium as its interior"
+                .to_string(),
+        ));
+    }
 }
 
 #[cfg(test)]

@@ -34,7 +34,12 @@
 //! single channel's blow up. Mitsuba's `volpathmis` combines light and phase/BSDF samples by
 //! the balance heuristic, steradian by the power heuristic (as `volpath`): the same
 //! expectation. A shape's `<medium>` must be named `interior` or `exterior` (Mitsuba ignores
-//! other names silently); all sensors share one medium.
+//! other names silently); all sensors share one medium. A sensor's medium that no shape
+//! bounds (no shape has it as `interior`) fills all space, and no light from infinity
+//! (environment, sun, directional light) crosses it: steradian renders that light black and
+//! warns at load, where Mitsuba 3.9.1 lets it in (a camera in such a fog under a uniform sky:
+//! image mean 0.145, more than the 0.065 of the same fog bounded by a null sphere of 20 m;
+//! `tests/volpath.rs`).
 //!
 //! Measured (`benches/render_vs_mitsuba.py`, 1024 spp, against Mitsuba 3.9.1 `llvm_ad_rgb`,
 //! time to relMSE 10⁻³; 2026-12-06, Intel Xeon, 2 cores; `benches/results/`):

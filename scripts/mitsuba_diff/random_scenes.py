@@ -14,8 +14,11 @@ with emitter_samples > 1; the plugins' manuals). From the repository root:
 2026-12-07 (AMD EPYC, 2 cores): seeds 0-99, and 120 scenes of two simpler generators (a
 sun-lit sky; homogeneous media and fog), found the thindielectric mismatch (now
 tests/thindielectric.rs), both Mitsuba errors above, Mitsuba's volpath lighting a camera fog
-of unbounded extent from a constant or envmap sky (steradian: black, the physical limit), and
-otherwise heavy-tailed scenes only."""
+of unbounded extent from a constant or envmap sky (steradian: black, the physical limit; the
+loader now warns), and otherwise heavy-tailed scenes only. Seeds 100-159 found Mitsuba's
+`ptracer` lighting a scene wrongly from a turned envmap (tests/ptracer.rs), the two Mitsuba
+errors above again, and heavy-tailed scenes; `ptracer` behind `thinlens` or `orthographic`
+cameras, which Mitsuba renders, steradian refuses with a message."""
 
 import os
 import random

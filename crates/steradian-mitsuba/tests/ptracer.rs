@@ -75,10 +75,11 @@ fn ptracer_from_projectors_matches_mitsuba() {
     matches_mitsuba("ptracer-projector", "ptracer from projectors");
 }
 
-/// The image means of `scene` (a reference scene whose `integrator` default names it) with
-/// `ptracer` at `pt_spp` and `path` at `path_spp`, each over 8 seeds, and z of their
-/// difference from the spread over the seeds.
-fn ptracer_against_path(scene: &str, pt_spp: u32, path_spp: u32) -> f64 {
+/// Asserts that the image means of `scene` (a reference scene whose `integrator` default
+/// names it) with `ptracer` at `pt_spp` and `path` at `path_spp`, each over 8 seeds, differ by
+/// less than 4 standard errors (z from the spread over the seeds).
+#[track_caller]
+fn assert_ptracer_renders_path(scene: &str, pt_spp: u32, path_spp: u32) {
     let mean_over_seeds = |integrator: &str, spp: u32| {
         let job = steradian_mitsuba::load_file(
             &data(scene),
@@ -101,7 +102,7 @@ fn ptracer_against_path(scene: &str, pt_spp: u32, path_spp: u32) -> f64 {
     let (path, path_se) = mean_over_seeds("path", path_spp);
     let z = (pt - path) / (pt_se * pt_se + path_se * path_se).sqrt();
     eprintln!("{scene}: ptracer {pt:.6} ± {pt_se:.6}, path {path:.6} ± {path_se:.6}, z = {z:.2}");
-    z
+    assert!(z.abs() < 4.0, "ptracer and path differ by {z:.2} standard errors");
 }
 
 /// A BSDF that bends its normal is not symmetric in its two directions: light paths must
@@ -112,8 +113,7 @@ fn ptracer_against_path(scene: &str, pt_spp: u32, path_spp: u32) -> f64 {
 /// 1.15 % bright (z = 23.4); sampled by the BSDF alone, 0.13 % dark (z = −4.9).
 #[test]
 fn a_bump_mapped_floor_renders_as_path_renders_it() {
-    let z = ptracer_against_path("ptracer-bump.xml", 2048, 64);
-    assert!(z.abs() < 4.0, "ptracer and path differ by {z:.2} standard errors");
+    assert_ptracer_renders_path("ptracer-bump.xml", 2048, 64);
 }
 
 /// The same through a mask over a bump-mapped BSDF (`reference/ptracer-mask-bump.xml`): the
@@ -122,8 +122,7 @@ fn a_bump_mapped_floor_renders_as_path_renders_it() {
 /// divided by the BSDF branch's probability) the image was 19 % dark (z = −51).
 #[test]
 fn a_masked_bump_mapped_panel_renders_as_path_renders_it() {
-    let z = ptracer_against_path("ptracer-mask-bump.xml", 128, 16);
-    assert!(z.abs() < 4.0, "ptracer and path differ by {z:.2} standard errors");
+    assert_ptracer_renders_path("ptracer-mask-bump.xml", 128, 16);
 }
 
 /// A camera with its principal point offset (`reference/ptracer-principal-point.xml`): light
@@ -132,8 +131,7 @@ fn a_masked_bump_mapped_panel_renders_as_path_renders_it() {
 /// culls them, a band 0.16 of the width wide stays black and the mean is 9 % low.
 #[test]
 fn a_shifted_principal_point_renders_as_path_renders_it() {
-    let z = ptracer_against_path("ptracer-principal-point.xml", 256, 16);
-    assert!(z.abs() < 4.0, "ptracer and path differ by {z:.2} standard errors");
+    assert_ptracer_renders_path("ptracer-principal-point.xml", 256, 16);
 }
 
 /// Light paths scatter off measured materials (`reference/measured.xml`: isotropic and
@@ -141,8 +139,7 @@ fn a_shifted_principal_point_renders_as_path_renders_it() {
 /// `ptracer` over 8 seeds equals `path`'s within 4 standard errors.
 #[test]
 fn measured_materials_render_as_path_renders_them() {
-    let z = ptracer_against_path("measured.xml", 128, 4);
-    assert!(z.abs() < 4.0, "ptracer and path differ by {z:.2} standard errors");
+    assert_ptracer_renders_path("measured.xml", 128, 4);
 }
 
 /// Light paths leaving a rotated environment map (`reference/ptracer-envmap.xml`): the image
@@ -151,8 +148,7 @@ fn measured_materials_render_as_path_renders_them() {
 /// 16.88 against 16.86).
 #[test]
 fn a_rotated_environment_map_renders_as_path_renders_it() {
-    let z = ptracer_against_path("ptracer-envmap.xml", 512, 16);
-    assert!(z.abs() < 4.0, "ptracer and path differ by {z:.2} standard errors");
+    assert_ptracer_renders_path("ptracer-envmap.xml", 512, 16);
 }
 
 #[test]

@@ -521,16 +521,11 @@ fn warn_of_unbounded_camera_medium(b: &Builder, m: u32, pos: &crate::SourcePos) 
         .iter()
         .chain(b.desc.groups.iter().flatten())
         .any(|(_, binding)| binding.interior == Some(m));
-    let at_infinity = b.desc.emitters.iter().any(|e| {
-        matches!(
-            e,
-            Emitter::Constant(_)
-                | Emitter::EnvMap(_)
-                | Emitter::SunSky(_)
-                | Emitter::Sun(_)
-                | Emitter::Directional(_)
-        )
-    });
+    let at_infinity = b
+        .desc
+        .emitters
+        .iter()
+        .any(|e| e.is_environment() || matches!(e, Emitter::Sun(_) | Emitter::Directional(_)));
     if !bounded && at_infinity {
         b.warn(LoadWarning::at(
             pos,

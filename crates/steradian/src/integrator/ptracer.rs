@@ -13,7 +13,7 @@
 //! Mitsuba 3: a film of W × H pixels at N samples per pixel traces N·W·H light paths (one pass
 //! of W·H paths per sample), each
 //! 1. connecting a point sampled on an extended light (area lights by area; lights at infinity
-//!    by their direction sampling from the camera) straight to the camera, unless
+//!    by their direction sampling from the lens point) straight to the camera, unless
 //!    `hide_emitters` or `max_depth` = 0: Le·cos θ_light/pdf · W·cos θ_cam/r² (delta lights
 //!    cannot be seen);
 //! 2. starting a ray from a light chosen uniformly ([`Emitter::sample_ray`], weight
@@ -29,9 +29,11 @@
 //! it, in W/(m²·sr), like the `path` integrator's image of the same scene (and Mitsuba's
 //! `ptracer`'s).
 //!
-//! Where steradian differs on purpose: only the pinhole `perspective` camera can be connected
-//! to (the render plan refuses other sensors with `ptracer`);
-//! lights are chosen uniformly, as Mitsuba chooses them. The standard error of each pixel comes
+//! Light paths connect to `perspective` and `thinlens` cameras, a `thinlens` camera at a point
+//! of its aperture drawn uniformly for each connection (`sensor/thinlens.rs`'s importance);
+//! the render plan refuses other sensors with `ptracer`, as Mitsuba 3's `ptracer` fails on an
+//! `orthographic` camera ("sample_direction(): not implemented").
+//! Lights are chosen uniformly, as Mitsuba chooses them. The standard error of each pixel comes
 //! from the spread of its per-pass sums, the passes being independent. On surfaces whose BSDF
 //! bends its own normal (`normalmap`, `bumpmap`) steradian's light paths evaluate the BSDF
 //! with the direction the light goes next as the viewer's (its adjoint) and draw some
@@ -186,7 +188,8 @@ impl ParticleTracer {
             let w_light = si.wo;
             let wl = si.to_local(w_light);
             let ng_light = si.n.dot(w_light);
-            if let Some(c) = sensor.sample_direction(si.p) {
+            let lens = sensor.sample_lens(s.next_2d());
+            if let Some(c) = lens.and_then(|lens| sensor.sample_direction(&lens, si.p)) {
                 let wc = si.to_local(c.wi);
                 let ng_cam = si.n.dot(c.wi);
                 // no light through shading normals' wrong side (Mitsuba's test)
@@ -235,8 +238,9 @@ impl ParticleTracer {
         splat: &mut impl FnMut(&SensorConnection, Spectrum),
     ) {
         let Some((index, pmf)) = scene.pick_emitter(s.next_1d()) else { return };
-        let u = s.next_2d();
+        let (u, u_lens) = (s.next_2d(), s.next_2d());
         let emitter = &scene.emitters[index as usize];
+        let Some(lens) = sensor.sample_lens(u_lens) else { return };
         if emitter.support() == Support::Delta {
             return;
         }
@@ -246,7 +250,7 @@ impl ParticleTracer {
                 if !crate::geometry::is_positive(ps.pdf_area) {
                     return;
                 }
-                let Some(c) = sensor.sample_direction(ps.p) else { return };
+                let Some(c) = sensor.sample_direction(&lens, ps.p) else { return };
                 let cos = ps.n.dot(c.wi);
                 let le = emitter.radiance(c.wi, ps.n, ps.uv);
                 if cos <= 0.0 || le == Spectrum::ZERO {
@@ -258,12 +262,12 @@ impl ParticleTracer {
             }
             // lights at infinity: a direction sampled from the camera
             None => {
-                let Some(origin) = sensor.pinhole() else { return };
+                let origin = lens.position;
                 let Some(es) = emitter.sample_direction(&scene.shapes, origin, u) else {
                     return;
                 };
-                let Some(c) = sensor.sample_direction_at_infinity(es.wi) else { return };
-                // the pinhole is no surface: the shadow ray leaves it along its own direction
+                let Some(c) = sensor.sample_direction_at_infinity(&lens, es.wi) else { return };
+                // the lens is no surface: the shadow ray leaves it along its own direction
                 if es.pdf > 0.0 && scene.unoccluded_along(origin, es.wi, es.wi, es.dist) {
                     splat(&c, es.weight * (c.weight / pmf));
                 }

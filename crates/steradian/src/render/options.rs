@@ -215,7 +215,7 @@ pub enum RenderError {
     NotACamera,
     /// Meters and irradiance maps need an integrator that estimates light (not `depth`).
     NotLight,
-    /// The particle tracer renders images through a pinhole (`perspective`) camera only.
+    /// The particle tracer renders images through `perspective` and `thinlens` cameras only.
     ParticlesNeedPinhole,
     /// An option out of its range: the option's name and what it must be.
     BadOption {
@@ -248,7 +248,7 @@ impl fmt::Display for RenderError {
             ),
             RenderError::ParticlesNeedPinhole => write!(
                 f,
-                "the ptracer integrator renders images through a perspective camera only (no thinlens, orthographic, batch or meters, no irradiance maps): use `path` for those"
+                "the ptracer integrator renders images through a perspective or thinlens camera only (no orthographic, batch or meters, no irradiance maps): use `path` for those"
             ),
             RenderError::BadOption { option, reason } => write!(f, "{option} {reason}"),
             RenderError::ThreadPool(e) => write!(f, "could not start worker threads: {e}"),
@@ -321,7 +321,7 @@ impl<'a> Plan<'a> {
             return Err(RenderError::NotLight);
         }
         if matches!(job.integrator, crate::integrator::Integrator::ParticleTracer(_))
-            && (opts.quantity.is_surface_map() || sensor.pinhole().is_none())
+            && (opts.quantity.is_surface_map() || sensor.sample_lens(glam::Vec2::ZERO).is_none())
         {
             return Err(RenderError::ParticlesNeedPinhole);
         }

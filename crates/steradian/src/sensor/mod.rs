@@ -16,7 +16,7 @@ pub use distant::{Distant, DistantTarget};
 pub use fov::{FieldOfView, FovAxis};
 pub use irradiancemeter::IrradianceMeter;
 pub use orthographic::Orthographic;
-pub use perspective::{Perspective, SensorConnection};
+pub use perspective::{LensSample, Perspective, SensorConnection};
 pub use radiancemeter::RadianceMeter;
 pub use thinlens::ThinLens;
 pub use workplane::{Workplane, WorkplaneMode, WorkplaneUnit};
@@ -100,31 +100,42 @@ impl Sensor {
         }
     }
 
-    /// The connection from world point `p` to the camera for particle tracing (Mitsuba's
-    /// `sample_direction`); only the pinhole camera has one (`None` otherwise and outside its
-    /// view).
+    /// The point of the camera's lens a light path connects to (particle tracing), from the
+    /// uniform sample `u`: the pinhole of `perspective`, a point drawn uniformly on the
+    /// aperture of `thinlens`. `None` for the sensors particle tracing cannot connect to
+    /// (`orthographic`, as in Mitsuba 3, whose `ptracer` has no connection to it; `batch`,
+    /// meters).
     #[inline]
-    pub fn sample_direction(&self, p: glam::Vec3) -> Option<SensorConnection> {
+    pub fn sample_lens(&self, u: Vec2) -> Option<LensSample> {
+        match &self.kind {
+            SensorKind::Perspective(c) => Some(c.lens()),
+            SensorKind::ThinLens(c) => Some(c.sample_lens(u)),
+            _ => None,
+        }
+    }
+
+    /// The connection from world point `p` to the camera through lens point `lens` (from
+    /// [`Sensor::sample_lens`]) for particle tracing (Mitsuba's `sample_direction`); `None`
+    /// outside the camera's view.
+    #[inline]
+    pub fn sample_direction(&self, lens: &LensSample, p: glam::Vec3) -> Option<SensorConnection> {
         match &self.kind {
             SensorKind::Perspective(c) => c.sample_direction(p),
+            SensorKind::ThinLens(c) => c.sample_direction(lens, p),
             _ => None,
         }
     }
 
     /// [`Sensor::sample_direction`] for light arriving from direction `wi` at infinity.
     #[inline]
-    pub fn sample_direction_at_infinity(&self, wi: glam::Vec3) -> Option<SensorConnection> {
+    pub fn sample_direction_at_infinity(
+        &self,
+        lens: &LensSample,
+        wi: glam::Vec3,
+    ) -> Option<SensorConnection> {
         match &self.kind {
             SensorKind::Perspective(c) => c.sample_direction_at_infinity(wi),
-            _ => None,
-        }
-    }
-
-    /// The pinhole of a camera particle tracing connects to (`None` for other sensors, which
-    /// it cannot connect to).
-    pub fn pinhole(&self) -> Option<glam::Vec3> {
-        match &self.kind {
-            SensorKind::Perspective(c) => Some(c.to_world.point(glam::Vec3::ZERO)),
+            SensorKind::ThinLens(c) => c.sample_direction_at_infinity(lens, wi),
             _ => None,
         }
     }

@@ -141,10 +141,43 @@ impl Perspective {
     }
 }
 
+/// The film position in [0, 1]² (before a principal point offset) of camera-space direction
+/// `local` (z > 0, any length).
+#[inline]
+pub(super) fn film_position(tan_half: Vec2, local: Vec3) -> Vec2 {
+    let (px, py) = (local.x / local.z, local.y / local.z);
+    Vec2::new(0.5 * (1.0 - px / tan_half.x), 0.5 * (1.0 - py / tan_half.y))
+}
+
+/// Whether film position `film_uv` lies on the film.
+#[inline]
+pub(super) fn on_film(film_uv: Vec2) -> bool {
+    film_uv.cmpge(Vec2::ZERO).all() && film_uv.cmple(Vec2::ONE).all()
+}
+
+/// W·cos θ = 1/(A·cos³θ) for camera-space direction `local` (z > 0, any length), with A the
+/// image rectangle's area at unit distance (see the module docs), 1/sr.
+#[inline]
+pub(super) fn importance_factor(tan_half: Vec2, local: Vec3) -> f32 {
+    let cos_theta = local.z / local.length();
+    let area = 4.0 * tan_half.x * tan_half.y;
+    1.0 / (area * cos_theta * cos_theta * cos_theta)
+}
+
+/// A point on a camera's lens that a light path connects to (particle tracing): the pinhole
+/// of a `perspective` camera, a point of a `thinlens` camera's aperture.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LensSample {
+    /// World position, m.
+    pub position: Vec3,
+    /// Camera-space position, m (z = 0).
+    pub local: Vec3,
+}
+
 /// A connection from a point to the camera (particle tracing).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct SensorConnection {
-    /// The camera's position (the pinhole), m.
+    /// The point of the camera's lens connected to (the pinhole, a point of the aperture), m.
     pub position: Vec3,
     /// Unit direction from the point towards the camera.
     pub wi: Vec3,
@@ -165,16 +198,14 @@ impl Perspective {
         if !is_positive(local.z) {
             return None;
         }
-        let (px, py) = (local.x / local.z, local.y / local.z);
-        let film_uv =
-            Vec2::new(0.5 * (1.0 - px / self.tan_half.x), 0.5 * (1.0 - py / self.tan_half.y))
-                - self.principal_point;
-        if !(film_uv.cmpge(Vec2::ZERO).all() && film_uv.cmple(Vec2::ONE).all()) {
-            return None;
-        }
-        let cos_theta = local.z / local.length();
-        let area = 4.0 * self.tan_half.x * self.tan_half.y;
-        Some((film_uv, 1.0 / (area * cos_theta * cos_theta * cos_theta)))
+        let film_uv = film_position(self.tan_half, local) - self.principal_point;
+        on_film(film_uv).then(|| (film_uv, importance_factor(self.tan_half, local)))
+    }
+
+    /// The pinhole, as the lens point particle tracing connects to.
+    #[inline]
+    pub fn lens(&self) -> LensSample {
+        LensSample { position: self.to_world.point(Vec3::ZERO), local: Vec3::ZERO }
     }
 
     /// The connection from world point `p` to the pinhole; `None` when `p` is outside the

@@ -67,7 +67,7 @@ fn unknown_bsdf_type() {
 fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
     for (tag, ty) in [
         ("shape", "ellipsoids"),
-        ("shape", "sdfgrid"),
+        ("shape", "ellipsoidsmesh"),
         ("bsdf", "measured_polarized"),
         ("bsdf", "polarizer"),
         ("emitter", "timed_sunsky"),

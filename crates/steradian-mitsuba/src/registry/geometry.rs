@@ -1,5 +1,5 @@
 //! Shape plugins' geometry: `obj`, `ply`, `serialized`, `rectangle`, `disk`, `cube`, `sphere`,
-//! `cylinder`, `linearcurve`, `bsplinecurve`, each built from its node with its `to_world` and `flip_normals`. What a shape
+//! `cylinder`, `linearcurve`, `bsplinecurve`, `sdfgrid`, each built from its node with its `to_world` and `flip_normals`. What a shape
 //! carries besides (BSDF, area emitter, sensor) and how groups place it is `shapes`' business;
 //! the geometry sits apart so that a sensor (a `distant` sensor's `target`) can build a shape
 //! without importing the module that nests sensors in shapes.
@@ -10,11 +10,12 @@ use std::sync::Arc;
 use steradian::geometry::Transform;
 use steradian::shape::{
     self, read_curves, read_obj, read_ply_with_attributes, BSplineCurve, Cylinder, Disk,
-    LinearCurve, Mesh, MeshData, Rectangle, Shape, ShapeError, Sphere, VertexNormals,
-    DEFAULT_FLIP_TEX_COORDS,
+    LinearCurve, Mesh, MeshData, Rectangle, SdfGrid, SdfNormals, Shape, ShapeError, Sphere,
+    VertexNormals, DEFAULT_FLIP_TEX_COORDS,
 };
+use steradian::texture::GridVolume;
 
-use super::{at_filename, lookup, AttributeSource, Builder, MeshAttributes, Plugins};
+use super::{at_filename, choice, lookup, AttributeSource, Builder, MeshAttributes, Plugins};
 use crate::error::LoadError;
 use crate::tree::PluginNode;
 
@@ -42,6 +43,7 @@ pub(super) const SHAPES: &Plugins<BuildShape> = &[
     ("cylinder", cylinder),
     ("linearcurve", linearcurve),
     ("bsplinecurve", bsplinecurve),
+    ("sdfgrid", sdfgrid),
     ("shapegroup", group_placeholder),
     ("instance", group_placeholder),
     ("merge", group_placeholder),
@@ -133,6 +135,37 @@ fn curve_file(s: &ShapeArgs) -> Result<Vec<Vec<glam::Vec4>>, LoadError> {
     }
     let path = mesh_file(s)?;
     read_curves(&path).map_err(at_filename::<ShapeError>(s.node))
+}
+
+/// `sdfgrid` (core: shape/sdfgrid.rs): the SDF samples from a one-channel `.vol` file. Mitsuba
+/// reads no `flip_normals` for it; its `grid` tensor cannot be given in XML.
+fn sdfgrid(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let node = s.node;
+    if let Some(pos) = node.props.position("flip_normals") {
+        return Err(LoadError::at(
+            pos,
+            format!("{}: an sdfgrid has no 'flip_normals' (Mitsuba 3 refuses it)", node.desc()),
+        ));
+    }
+    let normals = choice(
+        node,
+        "normals",
+        SdfNormals::DEFAULT,
+        &[("smooth", SdfNormals::Smooth), ("analytic", SdfNormals::Analytic)],
+    )?;
+    let path = mesh_file(s)?;
+    let grid = GridVolume::read(&path).map_err(at_filename(node))?;
+    if grid.channels != 1 {
+        let reason = format!(
+            "\"{}\" has {} channels; an sdfgrid's file holds 1",
+            path.display(),
+            grid.channels
+        );
+        return Err(at_filename(node)(reason));
+    }
+    let sdf = SdfGrid::new(grid.res, grid.into_values(), &s.to_world, normals)
+        .map_err(at_filename::<ShapeError>(node))?;
+    Ok(Shape::SdfGrid(sdf))
 }
 
 fn rectangle(s: &ShapeArgs) -> Result<Shape, LoadError> {

@@ -217,17 +217,19 @@ fn build_shape_node(
             format!("{} has more than one emitter", node.desc()),
         ));
     }
-    // Mitsuba samples no points on curves: they can neither emit nor carry a sensor
-    if let (Shape::LinearCurve(_) | Shape::BSplineCurve(_), Some(c)) = (
+    // Mitsuba samples no points on curves and SDF grids: they can neither emit nor carry a
+    // sensor
+    if let (Shape::LinearCurve(_) | Shape::BSplineCurve(_) | Shape::SdfGrid(_), Some(c)) = (
         &shape,
         node.children.iter().find(|c| matches!(c.node.tag, ObjectTag::Emitter | ObjectTag::Sensor)),
     ) {
         return Err(LoadError::at(
             c.pos(),
             format!(
-                "{}: {} on a curve is not supported (points on curves cannot be sampled)",
+                "{}: {} on {} is not supported (points on it cannot be sampled)",
                 node.desc(),
-                c.node.desc()
+                c.node.desc(),
+                if matches!(shape, Shape::SdfGrid(_)) { "an sdfgrid" } else { "a curve" }
             ),
         ));
     }

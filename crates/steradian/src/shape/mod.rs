@@ -1,7 +1,7 @@
 //! Shapes: the surfaces light interacts with.
 //!
 //! One file per Mitsuba 3 shape plugin (`obj`, `ply`, `serialized`, `cube`, `rectangle`,
-//! `disk`, `sphere`, `cylinder`, `linearcurve`, `bsplinecurve`; `curves.rs` reads curve files). [`Shape`] is a closed enum: every method is one `match`, no
+//! `disk`, `sphere`, `cylinder`, `linearcurve`, `bsplinecurve`, `sdfgrid`; `curves.rs` reads curve files). [`Shape`] is a closed enum: every method is one `match`, no
 //! dynamic dispatch.
 //!
 //! Conventions used by every shape:
@@ -29,6 +29,7 @@ mod mesh;
 mod obj;
 mod ply;
 mod rectangle;
+mod sdfgrid;
 pub mod serialized;
 mod sphere;
 
@@ -42,6 +43,7 @@ pub use mesh::{Mesh, MeshData};
 pub use obj::{read_obj, VertexNormals, DEFAULT_FLIP_TEX_COORDS};
 pub use ply::{read_ply, read_ply_with_attributes};
 pub use rectangle::Rectangle;
+pub use sdfgrid::{SdfGrid, SdfNormals};
 pub use serialized::{read_serialized, SerializedShape};
 pub use sphere::Sphere;
 
@@ -58,6 +60,7 @@ pub enum Shape {
     Cylinder(Cylinder),
     LinearCurve(LinearCurve),
     BSplineCurve(BSplineCurve),
+    SdfGrid(SdfGrid),
 }
 
 /// A point sampled on a surface, uniformly by area.
@@ -125,17 +128,20 @@ impl Shape {
             Shape::Cylinder(s) => s.bounds(),
             Shape::LinearCurve(s) => s.bounds(),
             Shape::BSplineCurve(s) => s.bounds(),
+            Shape::SdfGrid(s) => s.bounds(),
         }
     }
 
     /// Number of primitives: triangles for meshes and rectangles (2), segments of linear
-    /// curves, pieces of B-spline curves, 1 for other analytic shapes.
+    /// curves, pieces of B-spline curves, the voxels an SDF grid's surface may cross, 1 for
+    /// other analytic shapes.
     pub fn prim_count(&self) -> u32 {
         match self {
             Shape::Mesh(s) => s.indices.len() as u32,
             Shape::Rectangle(_) => 2,
             Shape::LinearCurve(s) => s.segment_count(),
             Shape::BSplineCurve(s) => s.piece_count_total(),
+            Shape::SdfGrid(s) => s.voxel_count(),
             _ => 1,
         }
     }
@@ -153,6 +159,7 @@ impl Shape {
             }
             Shape::LinearCurve(s) => s.prim_bounds(prim),
             Shape::BSplineCurve(s) => s.prim_bounds(prim),
+            Shape::SdfGrid(s) => s.prim_bounds(prim),
             _ => self.bounds(),
         }
     }
@@ -168,7 +175,8 @@ impl Shape {
             | Shape::Sphere(_)
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
-            | Shape::BSplineCurve(_) => None,
+            | Shape::BSplineCurve(_)
+            | Shape::SdfGrid(_) => None,
         }
     }
 
@@ -185,6 +193,7 @@ impl Shape {
             Shape::Cylinder(s) => s.intersect(ray),
             Shape::LinearCurve(s) => s.intersect_prim(prim, ray),
             Shape::BSplineCurve(s) => s.intersect_prim(prim, ray),
+            Shape::SdfGrid(s) => s.intersect_prim(prim, ray),
         }
     }
 
@@ -200,6 +209,7 @@ impl Shape {
             Shape::Cylinder(s) => s.interaction(ray, hit),
             Shape::LinearCurve(s) => s.interaction(ray, hit),
             Shape::BSplineCurve(s) => s.interaction(ray, hit),
+            Shape::SdfGrid(s) => s.interaction(ray, hit),
         }
     }
 
@@ -213,7 +223,8 @@ impl Shape {
             | Shape::Sphere(_)
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
-            | Shape::BSplineCurve(_) => {}
+            | Shape::BSplineCurve(_)
+            | Shape::SdfGrid(_) => {}
         }
     }
 
@@ -227,6 +238,7 @@ impl Shape {
             Shape::Cylinder(s) => s.surface_area(),
             Shape::LinearCurve(s) => s.surface_area(),
             Shape::BSplineCurve(s) => s.surface_area(),
+            Shape::SdfGrid(s) => s.surface_area(),
         }
     }
 
@@ -243,7 +255,8 @@ impl Shape {
             | Shape::Sphere(_)
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
-            | Shape::BSplineCurve(_) => true,
+            | Shape::BSplineCurve(_)
+            | Shape::SdfGrid(_) => true,
         }
     }
 
@@ -258,6 +271,7 @@ impl Shape {
             Shape::Cylinder(s) => s.sample_position(u),
             Shape::LinearCurve(s) => s.sample_position(u),
             Shape::BSplineCurve(s) => s.sample_position(u),
+            Shape::SdfGrid(s) => s.sample_position(u),
         }
     }
 
@@ -277,9 +291,8 @@ impl Shape {
             Shape::Disk(_)
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
-            | Shape::BSplineCurve(_) => {
-                direction_from_position(reference, &self.sample_position(u), 0)
-            }
+            | Shape::BSplineCurve(_)
+            | Shape::SdfGrid(_) => direction_from_position(reference, &self.sample_position(u), 0),
         }
     }
 
@@ -297,7 +310,8 @@ impl Shape {
             | Shape::Disk(_)
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
-            | Shape::BSplineCurve(_) => false,
+            | Shape::BSplineCurve(_)
+            | Shape::SdfGrid(_) => false,
         }
     }
 
@@ -309,7 +323,7 @@ impl Shape {
             Shape::Sphere(s) => s.pdf_direction(reference, p, n),
             Shape::Rectangle(s) => s.pdf_direction(reference, p, n),
             Shape::Mesh(s) => s.pdf_direction(reference, p, n, q.prim),
-            Shape::LinearCurve(_) | Shape::BSplineCurve(_) => 0.0,
+            Shape::LinearCurve(_) | Shape::BSplineCurve(_) | Shape::SdfGrid(_) => 0.0,
             Shape::Disk(_) | Shape::Cylinder(_) => {
                 let area = self.surface_area();
                 if area > 0.0 {

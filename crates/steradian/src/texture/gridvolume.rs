@@ -89,6 +89,11 @@ impl GridVolume {
         })
     }
 
+    /// The samples, x fastest, channels interleaved (an `sdfgrid` takes them over).
+    pub fn into_values(self) -> Vec<f32> {
+        self.data
+    }
+
     /// Reads a `.vol` file (see the module docs); errors name the problem.
     pub fn read(path: &Path) -> Result<GridVolume, String> {
         let bytes =

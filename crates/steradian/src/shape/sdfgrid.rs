@@ -177,7 +177,7 @@ impl SdfGrid {
         self.box_bounds(Vec3::ZERO, Vec3::ONE)
     }
 
-    /// World-space bounds of the surface in voxel `prim` ([`surface_box`]), padded by a
+    /// World-space bounds of the surface in voxel `prim` (`surface_box`), padded by a
     /// thousandth of the voxel against rounding at its faces.
     pub fn prim_bounds(&self, prim: u32) -> Aabb {
         let v = self.voxel_of(self.voxels[prim as usize]).as_vec3();

@@ -120,7 +120,7 @@ impl Sensor {
     #[inline]
     pub fn sample_direction(&self, lens: &LensSample, p: glam::Vec3) -> Option<SensorConnection> {
         match &self.kind {
-            SensorKind::Perspective(c) => c.sample_direction(p),
+            SensorKind::Perspective(c) => c.sample_direction(lens, p),
             SensorKind::ThinLens(c) => c.sample_direction(lens, p),
             _ => None,
         }
@@ -134,7 +134,7 @@ impl Sensor {
         wi: glam::Vec3,
     ) -> Option<SensorConnection> {
         match &self.kind {
-            SensorKind::Perspective(c) => c.sample_direction_at_infinity(wi),
+            SensorKind::Perspective(c) => c.sample_direction_at_infinity(lens, wi),
             SensorKind::ThinLens(c) => c.sample_direction_at_infinity(lens, wi),
             _ => None,
         }

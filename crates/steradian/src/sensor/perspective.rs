@@ -190,6 +190,25 @@ pub struct SensorConnection {
     pub weight: f32,
 }
 
+impl SensorConnection {
+    /// The connection from world point `p` to lens point `lens`, with film position `film_uv`
+    /// and importance factor `w` = W·cos θ (the weight is w/r²).
+    #[inline]
+    pub(super) fn to_point(lens: &LensSample, p: Vec3, film_uv: Vec2, w: f32) -> Self {
+        let d = lens.position - p;
+        let dist2 = d.length_squared();
+        let dist = dist2.sqrt();
+        SensorConnection { position: lens.position, wi: d / dist, dist, film_uv, weight: w / dist2 }
+    }
+
+    /// The connection for light arriving at lens point `lens` from world direction `wi`
+    /// (towards the light) at infinity: the weight is W·cos θ, without the 1/r².
+    #[inline]
+    pub(super) fn from_infinity(lens: &LensSample, wi: Vec3, film_uv: Vec2, weight: f32) -> Self {
+        SensorConnection { position: lens.position, wi: -wi, dist: f32::INFINITY, film_uv, weight }
+    }
+}
+
 impl Perspective {
     /// The film position and importance factor of the camera ray towards camera-space
     /// direction `local` (any length); `None` outside the field of view.
@@ -208,30 +227,29 @@ impl Perspective {
         LensSample { position: self.to_world.point(Vec3::ZERO), local: Vec3::ZERO }
     }
 
-    /// The connection from world point `p` to the pinhole; `None` when `p` is outside the
-    /// field of view or the clip range (depth along the axis in [near_clip, far_clip]).
+    /// The connection from world point `p` to the pinhole `lens` ([`Perspective::lens`]);
+    /// `None` when `p` is outside the field of view or the clip range (depth along the axis in
+    /// [near_clip, far_clip]).
     #[inline]
-    pub fn sample_direction(&self, p: Vec3) -> Option<SensorConnection> {
-        let position = self.to_world.point(Vec3::ZERO);
+    pub fn sample_direction(&self, lens: &LensSample, p: Vec3) -> Option<SensorConnection> {
         let local = self.to_world.inverse().point(p);
         if !(local.z >= self.near_clip && local.z <= self.far_clip) {
             return None;
         }
         let (film_uv, w) = self.importance(local)?;
-        let d = position - p;
-        let dist2 = d.length_squared();
-        let dist = dist2.sqrt();
-        Some(SensorConnection { position, wi: d / dist, dist, film_uv, weight: w / dist2 })
+        Some(SensorConnection::to_point(lens, p, film_uv, w))
     }
 
     /// The camera ray's film position and importance for light arriving from world
-    /// direction `wi` (towards the light, from the pinhole), for lights at infinity.
+    /// direction `wi` (towards the light, from the pinhole `lens`), for lights at infinity.
     #[inline]
-    pub fn sample_direction_at_infinity(&self, wi: Vec3) -> Option<SensorConnection> {
-        let position = self.to_world.point(Vec3::ZERO);
-        let local = self.to_world.inverse().vector(wi);
-        let (film_uv, weight) = self.importance(local)?;
-        Some(SensorConnection { position, wi: -wi, dist: f32::INFINITY, film_uv, weight })
+    pub fn sample_direction_at_infinity(
+        &self,
+        lens: &LensSample,
+        wi: Vec3,
+    ) -> Option<SensorConnection> {
+        let (film_uv, weight) = self.importance(self.to_world.inverse().vector(wi))?;
+        Some(SensorConnection::from_infinity(lens, wi, film_uv, weight))
     }
 }
 
@@ -296,7 +314,7 @@ mod tests {
                 rng.next_f32(),
                 rng.next_f32(),
             ));
-            let v = c.sample_direction_at_infinity(d).map_or(0.0, |s| s.weight as f64)
+            let v = c.sample_direction_at_infinity(&c.lens(), d).map_or(0.0, |s| s.weight as f64)
                 * 4.0
                 * std::f64::consts::PI;
             // W·cos θ at infinity is the factor without 1/r²: ∫ over the sphere of directions
@@ -307,12 +325,12 @@ mod tests {
         let se = ((sum2 / n as f64 - mean * mean) / n as f64).sqrt();
         assert!((mean - 1.0).abs() < 4.0 * se, "{mean} ± {se}");
         let p = Vec3::new(0.3, -0.2, 0.5);
-        let s = c.sample_direction(p).unwrap();
+        let s = c.sample_direction(&c.lens(), p).unwrap();
         let r = c.sample_ray(s.film_uv);
         assert!((r.d + s.wi).length() < 1e-5, "{:?} vs {:?}", r.d, s.wi);
         assert!((s.dist - (p - s.position).length()).abs() < 1e-5);
         // behind the camera: no connection
-        assert!(c.sample_direction(Vec3::new(0.0, 0.0, 5.0)).is_none());
+        assert!(c.sample_direction(&c.lens(), Vec3::new(0.0, 0.0, 5.0)).is_none());
     }
 
     /// A principal point offset shifts the window: the shifted camera's pixel looks where the
@@ -330,16 +348,16 @@ mod tests {
         // a positive x offset turns the view towards the image's right (+x here)
         assert!(c.sample_ray(Vec2::splat(0.5)).d.x > 0.0);
         let p = Vec3::new(0.3, -0.2, 0.5);
-        let s = c.sample_direction(p).unwrap();
+        let s = c.sample_direction(&c.lens(), p).unwrap();
         let r = c.sample_ray(s.film_uv);
         assert!((r.d + s.wi).length() < 1e-5, "{:?} vs {:?}", r.d, s.wi);
-        let sp = plain.sample_direction(p).unwrap();
+        let sp = plain.sample_direction(&plain.lens(), p).unwrap();
         assert!((s.film_uv + offset - sp.film_uv).length() < 1e-5);
         assert!((s.weight - sp.weight).abs() <= 1e-6 * sp.weight);
         // a direction the plain camera sees at its left edge falls outside the shifted window
         let edge = plain.sample_ray(Vec2::new(0.05, 0.5)).d;
-        assert!(plain.sample_direction_at_infinity(edge).is_some());
-        assert!(c.sample_direction_at_infinity(edge).is_none());
+        assert!(plain.sample_direction_at_infinity(&plain.lens(), edge).is_some());
+        assert!(c.sample_direction_at_infinity(&c.lens(), edge).is_none());
         assert!(camera().with_principal_point_offset(Vec2::new(f32::NAN, 0.0)).is_err());
     }
 

@@ -121,16 +121,7 @@ impl ThinLens {
             return None;
         }
         let (film_uv, w) = self.importance(lens, local_p - lens.local)?;
-        let d = lens.position - p;
-        let dist2 = d.length_squared();
-        let dist = dist2.sqrt();
-        Some(SensorConnection {
-            position: lens.position,
-            wi: d / dist,
-            dist,
-            film_uv,
-            weight: w / dist2,
-        })
+        Some(SensorConnection::to_point(lens, p, film_uv, w))
     }
 
     /// [`ThinLens::sample_direction`] for light arriving from world direction `wi` (towards
@@ -143,13 +134,7 @@ impl ThinLens {
     ) -> Option<SensorConnection> {
         let local = self.to_world.inverse().vector(wi);
         let (film_uv, weight) = self.importance(lens, local)?;
-        Some(SensorConnection {
-            position: lens.position,
-            wi: -wi,
-            dist: f32::INFINITY,
-            film_uv,
-            weight,
-        })
+        Some(SensorConnection::from_infinity(lens, wi, film_uv, weight))
     }
 }
 

@@ -1,8 +1,9 @@
 //! Shapes: the surfaces light interacts with.
 //!
 //! One file per Mitsuba 3 shape plugin (`obj`, `ply`, `serialized`, `cube`, `rectangle`,
-//! `disk`, `sphere`, `cylinder`, `linearcurve`, `bsplinecurve`, `sdfgrid`; `curves.rs` reads curve files). [`Shape`] is a closed enum: every method is one `match`, no
-//! dynamic dispatch.
+//! `disk`, `sphere`, `cylinder`, `linearcurve`, `bsplinecurve`, `sdfgrid`, `ellipsoids`,
+//! `ellipsoidsmesh`; `curves.rs` reads curve files). [`Shape`] is a closed enum: every method
+//! is one `match`, no dynamic dispatch.
 //!
 //! Conventions used by every shape:
 //! - `n` is the shape's own geometric normal (outward / front side), never flipped towards a
@@ -24,6 +25,8 @@ mod cube;
 mod curves;
 mod cylinder;
 mod disk;
+mod ellipsoids;
+mod ellipsoidsmesh;
 mod linearcurve;
 mod mesh;
 mod obj;
@@ -38,10 +41,15 @@ pub use cube::cube;
 pub use curves::{parse_curves, read_curves};
 pub use cylinder::Cylinder;
 pub use disk::Disk;
+pub use ellipsoids::{
+    read_ellipsoids, Ellipsoid, EllipsoidCloud, Ellipsoids, ExtentClamping, DEFAULT_EXTENT,
+    DEFAULT_SCALE_FACTOR,
+};
+pub use ellipsoidsmesh::{ellipsoid_shells, EllipsoidShells, Shell, ShellTemplate};
 pub use linearcurve::LinearCurve;
 pub use mesh::{Mesh, MeshData};
 pub use obj::{read_obj, VertexNormals, DEFAULT_FLIP_TEX_COORDS};
-pub use ply::{read_ply, read_ply_with_attributes};
+pub use ply::{read_ply, read_ply_table, read_ply_with_attributes, PlyTable};
 pub use rectangle::Rectangle;
 pub use sdfgrid::{SdfGrid, SdfNormals};
 pub use serialized::{read_serialized, SerializedShape};
@@ -61,6 +69,8 @@ pub enum Shape {
     LinearCurve(LinearCurve),
     BSplineCurve(BSplineCurve),
     SdfGrid(SdfGrid),
+    Ellipsoids(Ellipsoids),
+    EllipsoidShells(EllipsoidShells),
 }
 
 /// A point sampled on a surface, uniformly by area.
@@ -129,12 +139,14 @@ impl Shape {
             Shape::LinearCurve(s) => s.bounds(),
             Shape::BSplineCurve(s) => s.bounds(),
             Shape::SdfGrid(s) => s.bounds(),
+            Shape::Ellipsoids(s) => s.bounds(),
+            Shape::EllipsoidShells(s) => s.bounds(),
         }
     }
 
     /// Number of primitives: triangles for meshes and rectangles (2), segments of linear
-    /// curves, pieces of B-spline curves, the voxels an SDF grid's surface may cross, 1 for
-    /// other analytic shapes.
+    /// curves, pieces of B-spline curves, the voxels an SDF grid's surface may cross,
+    /// ellipsoids, the triangles of ellipsoid shells, 1 for other analytic shapes.
     pub fn prim_count(&self) -> u32 {
         match self {
             Shape::Mesh(s) => s.indices.len() as u32,
@@ -142,6 +154,8 @@ impl Shape {
             Shape::LinearCurve(s) => s.segment_count(),
             Shape::BSplineCurve(s) => s.piece_count_total(),
             Shape::SdfGrid(s) => s.voxel_count(),
+            Shape::Ellipsoids(s) => s.count(),
+            Shape::EllipsoidShells(s) => s.triangle_count(),
             _ => 1,
         }
     }
@@ -160,6 +174,8 @@ impl Shape {
             Shape::LinearCurve(s) => s.prim_bounds(prim),
             Shape::BSplineCurve(s) => s.prim_bounds(prim),
             Shape::SdfGrid(s) => s.prim_bounds(prim),
+            Shape::Ellipsoids(s) => s.prim_bounds(prim),
+            Shape::EllipsoidShells(s) => s.prim_bounds(prim),
             _ => self.bounds(),
         }
     }
@@ -176,7 +192,9 @@ impl Shape {
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
             | Shape::BSplineCurve(_)
-            | Shape::SdfGrid(_) => None,
+            | Shape::SdfGrid(_)
+            | Shape::Ellipsoids(_)
+            | Shape::EllipsoidShells(_) => None,
         }
     }
 
@@ -194,6 +212,8 @@ impl Shape {
             Shape::LinearCurve(s) => s.intersect_prim(prim, ray),
             Shape::BSplineCurve(s) => s.intersect_prim(prim, ray),
             Shape::SdfGrid(s) => s.intersect_prim(prim, ray),
+            Shape::Ellipsoids(s) => s.intersect_prim(prim, ray),
+            Shape::EllipsoidShells(s) => s.intersect_prim(prim, ray),
         }
     }
 
@@ -210,6 +230,8 @@ impl Shape {
             Shape::LinearCurve(s) => s.interaction(ray, hit),
             Shape::BSplineCurve(s) => s.interaction(ray, hit),
             Shape::SdfGrid(s) => s.interaction(ray, hit),
+            Shape::Ellipsoids(s) => s.interaction(ray, hit),
+            Shape::EllipsoidShells(s) => s.interaction(ray, hit),
         }
     }
 
@@ -224,7 +246,9 @@ impl Shape {
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
             | Shape::BSplineCurve(_)
-            | Shape::SdfGrid(_) => {}
+            | Shape::SdfGrid(_)
+            | Shape::Ellipsoids(_)
+            | Shape::EllipsoidShells(_) => {}
         }
     }
 
@@ -239,6 +263,8 @@ impl Shape {
             Shape::LinearCurve(s) => s.surface_area(),
             Shape::BSplineCurve(s) => s.surface_area(),
             Shape::SdfGrid(s) => s.surface_area(),
+            Shape::Ellipsoids(s) => s.surface_area(),
+            Shape::EllipsoidShells(s) => s.surface_area(),
         }
     }
 
@@ -256,7 +282,9 @@ impl Shape {
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
             | Shape::BSplineCurve(_)
-            | Shape::SdfGrid(_) => true,
+            | Shape::SdfGrid(_)
+            | Shape::Ellipsoids(_)
+            | Shape::EllipsoidShells(_) => true,
         }
     }
 
@@ -272,6 +300,8 @@ impl Shape {
             Shape::LinearCurve(s) => s.sample_position(u),
             Shape::BSplineCurve(s) => s.sample_position(u),
             Shape::SdfGrid(s) => s.sample_position(u),
+            Shape::Ellipsoids(s) => s.sample_position(u),
+            Shape::EllipsoidShells(s) => s.sample_position(u),
         }
     }
 
@@ -292,7 +322,11 @@ impl Shape {
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
             | Shape::BSplineCurve(_)
-            | Shape::SdfGrid(_) => direction_from_position(reference, &self.sample_position(u), 0),
+            | Shape::SdfGrid(_)
+            | Shape::Ellipsoids(_)
+            | Shape::EllipsoidShells(_) => {
+                direction_from_position(reference, &self.sample_position(u), 0)
+            }
         }
     }
 
@@ -311,7 +345,9 @@ impl Shape {
             | Shape::Cylinder(_)
             | Shape::LinearCurve(_)
             | Shape::BSplineCurve(_)
-            | Shape::SdfGrid(_) => false,
+            | Shape::SdfGrid(_)
+            | Shape::Ellipsoids(_)
+            | Shape::EllipsoidShells(_) => false,
         }
     }
 
@@ -323,7 +359,11 @@ impl Shape {
             Shape::Sphere(s) => s.pdf_direction(reference, p, n),
             Shape::Rectangle(s) => s.pdf_direction(reference, p, n),
             Shape::Mesh(s) => s.pdf_direction(reference, p, n, q.prim),
-            Shape::LinearCurve(_) | Shape::BSplineCurve(_) | Shape::SdfGrid(_) => 0.0,
+            Shape::LinearCurve(_)
+            | Shape::BSplineCurve(_)
+            | Shape::SdfGrid(_)
+            | Shape::Ellipsoids(_)
+            | Shape::EllipsoidShells(_) => 0.0,
             Shape::Disk(_) | Shape::Cylinder(_) => {
                 let area = self.surface_area();
                 if area > 0.0 {

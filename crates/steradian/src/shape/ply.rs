@@ -376,6 +376,55 @@ pub fn read_ply_with_attributes(
         .map_err(|msg| ShapeError(format!("PLY file \"{}\": {msg}", path.display())))
 }
 
+/// The first element of a PLY file as a table (what Mitsuba's `ellipsoids` reads): the
+/// element's property names and its records' values, row after row, as numbers. Every
+/// property must be a scalar.
+pub fn read_ply_table(path: &Path) -> Result<PlyTable, ShapeError> {
+    let fail = |msg: String| ShapeError(format!("PLY file \"{}\": {msg}", path.display()));
+    let file = std::fs::File::open(path)
+        .map_err(|e| ShapeError(format!("cannot open PLY file \"{}\": {e}", path.display())))?;
+    let file_len = file.metadata().map(|m| m.len()).unwrap_or(u64::MAX);
+    let (elements, mut body) = open_body(file, file_len).map_err(fail)?;
+    let def = elements.first().ok_or_else(|| fail("the header declares no element".into()))?;
+    let mut types = Vec::with_capacity(def.properties.len());
+    for prop in &def.properties {
+        match prop.ty {
+            PropertyType::Scalar(ty) => types.push(ty),
+            PropertyType::List { .. } => {
+                return Err(fail(format!(
+                    "property \"{}\" of element \"{}\" is a list; this table holds scalars only",
+                    prop.name, def.name
+                )))
+            }
+        }
+    }
+    // as in `read`: a corrupt count must not reserve more than the file could fill
+    let capacity =
+        def.count.saturating_mul(types.len()).min(file_len.min(usize::MAX as u64) as usize);
+    let mut values = Vec::with_capacity(capacity);
+    for record in 0..def.count {
+        for ty in &types {
+            let v = body
+                .scalar(*ty)
+                .map_err(|e| fail(format!("record {record} of \"{}\": {e}", def.name)))?;
+            values.push(v);
+        }
+    }
+    let names = def.properties.iter().map(|p| p.name.clone()).collect();
+    Ok(PlyTable { element: def.name.clone(), names, values })
+}
+
+/// One PLY element read as a table by [`read_ply_table`].
+#[derive(Clone, Debug, PartialEq)]
+pub struct PlyTable {
+    /// The element's name (`vertex` in the files Mitsuba writes).
+    pub element: String,
+    /// Property names, in file order.
+    pub names: Vec<String>,
+    /// `names.len()` values per record, record after record.
+    pub values: Vec<f64>,
+}
+
 /// The header: the format and the elements, in order.
 fn read_header(reader: &mut BufReader<std::fs::File>) -> Result<(Format, Vec<ElementDef>), String> {
     let mut line = Vec::new();
@@ -458,10 +507,11 @@ struct Output {
     indices_checked: bool,
 }
 
-fn read(file: std::fs::File, file_len: u64) -> Result<(MeshData, Vec<MeshAttributeData>), String> {
+/// The header's elements and the body after it.
+fn open_body(file: std::fs::File, file_len: u64) -> Result<(Vec<ElementDef>, Body), String> {
     let mut reader = BufReader::with_capacity(READ_BUFFER, file);
     let (format, elements) = read_header(&mut reader)?;
-    let mut body = match format {
+    let body = match format {
         Format::Binary(order) => {
             let buf = reader.buffer().to_vec();
             let mut file = reader.into_inner();
@@ -477,6 +527,11 @@ fn read(file: std::fs::File, file_len: u64) -> Result<(MeshData, Vec<MeshAttribu
             Body::Ascii { text, pos: 0 }
         }
     };
+    Ok((elements, body))
+}
+
+fn read(file: std::fs::File, file_len: u64) -> Result<(MeshData, Vec<MeshAttributeData>), String> {
+    let (elements, mut body) = open_body(file, file_len)?;
     // no element can have more records than the file has bytes: a corrupt count must not
     // reserve memory the file could never fill
     let capacity = |count: usize| count.min(file_len.min(usize::MAX as u64) as usize);

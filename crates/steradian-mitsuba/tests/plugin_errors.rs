@@ -66,8 +66,6 @@ fn unknown_bsdf_type() {
 #[test]
 fn mitsuba_plugins_steradian_lacks_are_unsupported_not_unknown() {
     for (tag, ty) in [
-        ("shape", "ellipsoids"),
-        ("shape", "ellipsoidsmesh"),
         ("bsdf", "measured_polarized"),
         ("bsdf", "polarizer"),
         ("emitter", "timed_sunsky"),

@@ -1,5 +1,6 @@
 //! Shape plugins' geometry: `obj`, `ply`, `serialized`, `rectangle`, `disk`, `cube`, `sphere`,
-//! `cylinder`, `linearcurve`, `bsplinecurve`, `sdfgrid`, each built from its node with its `to_world` and `flip_normals`. What a shape
+//! `cylinder`, `linearcurve`, `bsplinecurve`, `sdfgrid`, `ellipsoids`, `ellipsoidsmesh`, each
+//! built from its node with its `to_world` and `flip_normals`. What a shape
 //! carries besides (BSDF, area emitter, sensor) and how groups place it is `shapes`' business;
 //! the geometry sits apart so that a sensor (a `distant` sensor's `target`) can build a shape
 //! without importing the module that nests sensors in shapes.
@@ -9,14 +10,15 @@ use std::sync::Arc;
 
 use steradian::geometry::Transform;
 use steradian::shape::{
-    self, read_curves, read_obj, read_ply_with_attributes, BSplineCurve, Cylinder, Disk,
-    LinearCurve, Mesh, MeshData, Rectangle, SdfGrid, SdfNormals, Shape, ShapeError, Sphere,
-    VertexNormals, DEFAULT_FLIP_TEX_COORDS,
+    self, ellipsoid_shells, read_curves, read_ellipsoids, read_obj, read_ply_with_attributes,
+    BSplineCurve, Cylinder, Disk, EllipsoidCloud, EllipsoidShells, Ellipsoids, ExtentClamping,
+    LinearCurve, Mesh, MeshData, Rectangle, SdfGrid, SdfNormals, Shape, ShapeError, Shell,
+    ShellTemplate, Sphere, VertexNormals, DEFAULT_FLIP_TEX_COORDS,
 };
 use steradian::texture::GridVolume;
 
 use super::{at_filename, choice, lookup, AttributeSource, Builder, MeshAttributes, Plugins};
-use crate::error::LoadError;
+use crate::error::{LoadError, LoadWarning};
 use crate::tree::PluginNode;
 
 /// What a shape builder reads: the scene being built (for file paths), the shape's node, and
@@ -44,6 +46,8 @@ pub(super) const SHAPES: &Plugins<BuildShape> = &[
     ("linearcurve", linearcurve),
     ("bsplinecurve", bsplinecurve),
     ("sdfgrid", sdfgrid),
+    ("ellipsoids", ellipsoids),
+    ("ellipsoidsmesh", ellipsoidsmesh),
     ("shapegroup", group_placeholder),
     ("instance", group_placeholder),
     ("merge", group_placeholder),
@@ -200,6 +204,118 @@ fn cylinder(s: &ShapeArgs) -> Result<Shape, LoadError> {
     let radius = p.get_float("radius")?.unwrap_or(Cylinder::DEFAULT_RADIUS);
     let cylinder = Cylinder::new(p0, p1, radius, &s.to_world, s.flip).map_err(shape_err(s.node))?;
     Ok(Shape::Cylinder(cylinder))
+}
+
+/// The ellipsoids of an `ellipsoids` or `ellipsoidsmesh` node (core: shape/ellipsoids.rs) and
+/// each one's extent. Their `data`, `centers`, `scales` and `quaternions` tensors cannot be
+/// written in XML: a scene names a PLY file.
+fn ellipsoid_cloud(s: &ShapeArgs) -> Result<(EllipsoidCloud, Vec<f32>), LoadError> {
+    let (node, p) = (s.node, &s.node.props);
+    let positive = |name: &str, default: f32| -> Result<f32, LoadError> {
+        let v = p.get_float(name)?.unwrap_or(default);
+        if v > 0.0 && v.is_finite() {
+            Ok(v)
+        } else {
+            Err(LoadError::at(
+                p.position(name).unwrap_or(&node.pos),
+                format!("{}: '{name}' must be positive and finite, got {v}", node.desc()),
+            ))
+        }
+    };
+    let scale_factor = positive("scale_factor", shape::DEFAULT_SCALE_FACTOR)?;
+    let extent = positive("extent", shape::DEFAULT_EXTENT)?;
+    let clamping = match p.get_bool("extent_adaptive_clamping")? {
+        None => ExtentClamping::DEFAULT,
+        Some(false) => ExtentClamping::Fixed,
+        Some(true) => ExtentClamping::Adaptive,
+    };
+    let path = mesh_file(s)?;
+    let cloud = read_ellipsoids(&path, scale_factor, &s.to_world)
+        .map_err(at_filename::<ShapeError>(node))?;
+    if clamping == ExtentClamping::Adaptive && cloud.opacities.is_none() {
+        s.b.warn(LoadWarning::at(
+            p.position("extent_adaptive_clamping").unwrap_or(&node.pos),
+            format!(
+                "{}: the file gives no opacities, so extent_adaptive_clamping is off (as in \
+                 Mitsuba 3)",
+                node.desc()
+            ),
+        ));
+    }
+    let extents = cloud.extents(extent, clamping);
+    Ok((cloud, extents))
+}
+
+/// `ellipsoids` (core: shape/ellipsoids.rs). Mitsuba reads no `flip_normals` for it.
+fn ellipsoids(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let node = s.node;
+    if let Some(pos) = node.props.position("flip_normals") {
+        return Err(LoadError::at(
+            pos,
+            format!("{}: ellipsoids have no 'flip_normals' (Mitsuba 3 refuses it)", node.desc()),
+        ));
+    }
+    let (cloud, extents) = ellipsoid_cloud(s)?;
+    let shape = Ellipsoids::new(&cloud.ellipsoids, &extents).map_err(at_filename(node))?;
+    Ok(Shape::Ellipsoids(shape))
+}
+
+/// `ellipsoidsmesh` (core: shape/ellipsoidsmesh.rs): the ellipsoids' shells as one mesh with
+/// flat normals, hit from outside only; `shell` is a template's name or a nested mesh shape
+/// named "shell".
+fn ellipsoidsmesh(s: &ShapeArgs) -> Result<Shape, LoadError> {
+    let (node, p) = (s.node, &s.node.props);
+    let shell = match (p.contains("shell"), node.child("shell")) {
+        (true, Some(c)) => {
+            return Err(LoadError::at(
+                c.pos(),
+                format!("{}: 'shell' is given twice, as a string and an object", node.desc()),
+            ))
+        }
+        (false, Some(c)) if c.node.tag == crate::tree::ObjectTag::Shape => {
+            match build_geometry(s.b, &c.node)? {
+                Shape::Mesh(m) => Shell::Mesh { positions: m.positions, indices: m.indices },
+                _ => {
+                    return Err(LoadError::at(
+                        c.pos(),
+                        format!(
+                            "{}: the shell {} is not a triangle mesh (obj, ply, serialized, cube)",
+                            node.desc(),
+                            c.node.desc()
+                        ),
+                    ))
+                }
+            }
+        }
+        (false, Some(c)) => {
+            return Err(LoadError::at(
+                c.pos(),
+                format!(
+                    "{}: 'shell' must be a string or a mesh, not {}",
+                    node.desc(),
+                    c.node.desc()
+                ),
+            ))
+        }
+        _ => Shell::Named(choice(
+            node,
+            "shell",
+            ShellTemplate::DEFAULT,
+            &[
+                ("ico_sphere", ShellTemplate::IcoSphere),
+                ("default", ShellTemplate::IcoSphere),
+                ("box", ShellTemplate::Box),
+                ("uv_sphere", ShellTemplate::UvSphere),
+            ],
+        )?),
+    };
+    // accepted as Mitsuba accepts it; the shells are flat either way
+    p.get_bool("face_normals")?;
+    let (cloud, extents) = ellipsoid_cloud(s)?;
+    let data = ellipsoid_shells(&cloud.ellipsoids, &extents, &shell).map_err(at_filename(node))?;
+    let mesh = Mesh::from_data(data, &Default::default(), s.flip, true)
+        .map_err(at_filename::<ShapeError>(node))?;
+    Ok(Shape::EllipsoidShells(EllipsoidShells::new(mesh)))
 }
 
 /// A shape's geometry alone, where it only marks out a region (a `distant` sensor's

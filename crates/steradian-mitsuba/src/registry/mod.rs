@@ -242,11 +242,9 @@ pub(crate) type Plugins<F> = [(&'static str, F)];
 /// - `sggx`: Mitsuba 3.9.1 samples it from a rotated copy of its matrix (the local frame is
 ///   built as B·S·Bᵀ where its density uses Bᵀ·S·B; upstream issue 1728), so its images are
 ///   biased and no reference could be matched without copying the error.
-/// - `ellipsoids`, `ellipsoidsmesh`.
 pub(crate) const MITSUBA_UNSUPPORTED: &[(&str, &[&str])] = &[
     ("bsdf", &["measured_polarized", "polarizer", "retarder"]),
     ("emitter", &["timed_sunsky"]),
-    ("shape", &["ellipsoids", "ellipsoidsmesh"]),
     ("film", &["specfilm"]),
     ("phase", &["sggx"]),
     ("integrator", &["stokes"]),

@@ -217,19 +217,20 @@ fn build_shape_node(
             format!("{} has more than one emitter", node.desc()),
         ));
     }
-    // Mitsuba samples no points on curves and SDF grids: they can neither emit nor carry a
-    // sensor
-    if let (Shape::LinearCurve(_) | Shape::BSplineCurve(_) | Shape::SdfGrid(_), Some(c)) = (
-        &shape,
+    // Mitsuba samples no points on curves, SDF grids and ellipsoid clouds: they can neither
+    // emit nor carry a sensor
+    let unsampled = ["linearcurve", "bsplinecurve", "sdfgrid", "ellipsoids", "ellipsoidsmesh"];
+    if let (true, Some(c)) = (
+        unsampled.contains(&node.plugin_type.as_str()),
         node.children.iter().find(|c| matches!(c.node.tag, ObjectTag::Emitter | ObjectTag::Sensor)),
     ) {
         return Err(LoadError::at(
             c.pos(),
             format!(
-                "{}: {} on {} is not supported (points on it cannot be sampled)",
+                "{}: {} on a shape of type '{}' is not supported (points on it cannot be sampled)",
                 node.desc(),
                 c.node.desc(),
-                if matches!(shape, Shape::SdfGrid(_)) { "an sdfgrid" } else { "a curve" }
+                node.plugin_type
             ),
         ));
     }

@@ -225,6 +225,16 @@ pub(crate) fn check_extents(ellipsoids: &[Ellipsoid], extents: &[f32]) -> Result
     if let Some(k) = extents.iter().find(|k| !(k.is_finite() && **k >= 0.0)) {
         return Err(ShapeError(format!("ellipsoids: an extent is {k}; it must be finite and ≥ 0")));
     }
+    // a finite scale times a finite extent can still overflow
+    for (i, (e, &k)) in ellipsoids.iter().zip(extents).enumerate() {
+        let radii = e.scale * k;
+        if !(radii.is_finite() && e.center.is_finite() && (e.center.abs() + radii).is_finite()) {
+            return Err(ShapeError(format!(
+                "ellipsoids: ellipsoid {i}'s shell (centre {}, radii {radii}) is not finite",
+                e.center
+            )));
+        }
+    }
     Ok(())
 }
 
@@ -492,6 +502,8 @@ mod tests {
         }
         assert!(Ellipsoids::new(&[], &[]).is_err());
         assert!(Ellipsoids::new(&[turned(); 2], &[1.0]).is_err());
+        let huge = Ellipsoid { scale: Vec3::splat(2e38), ..turned() };
+        assert!(Ellipsoids::new(&[huge], &[3.0]).is_err(), "radii overflow to infinity");
         // an ellipsoid of extent 0 has no shell; the others stay
         assert_eq!(Ellipsoids::new(&[turned(); 2], &[0.0, 1.0]).unwrap().count(), 1);
     }

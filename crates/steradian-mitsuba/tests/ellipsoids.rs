@@ -1,8 +1,8 @@
 //! Purpose: `ellipsoids` and `ellipsoidsmesh` render `reference/ellipsoids.xml` (an analytic
 //! cloud from a binary PLY file, turned and scaled by `to_world`; a Gaussian-splatting ASCII
 //! file as triangle shells with adaptive extents) as Mitsuba 3.9.1 renders it, with each of
-//! its three shell templates (its Z-test rule against 4096-spp `llvm_ad_rgb` references); a
-//! wrong extent or another template fails the rule; what Mitsuba refuses on these shapes and
+//! its three shell templates and with a texture on the shells (its Z-test rule against
+//! 4096-spp `llvm_ad_rgb` references); a wrong extent or another template fails the rule; what Mitsuba refuses on these shapes and
 //! malformed files are located errors.
 
 mod common;
@@ -54,6 +54,22 @@ fn a_wrong_extent_or_template_fails() {
 
 /// Loads a scene of one shape of type `ty` reading `file` (line 4) with `inner` (line 5);
 /// an error's message must be placed on line `line`.
+/// A shell has no texture coordinates of its own: a hit's (u, v) are its triangle's
+/// barycentrics, so a checkerboard on the icosahedral shells shows the order of each
+/// triangle's vertices, which must be Mitsuba's.
+#[test]
+fn textures_on_shells_follow_mitsubas_vertex_order() {
+    let job = reference_scene_with(
+        "ellipsoids.xml",
+        "<rgb name=\"diffuse_reflectance\" value=\"0.2, 0.4, 0.7\"/>",
+        "<texture type=\"checkerboard\" name=\"diffuse_reflectance\">\
+         <rgb name=\"color0\" value=\"0.05, 0.1, 0.6\"/><rgb name=\"color1\" value=\"0.8, 0.7, 0.2\"/>\
+         <transform name=\"to_uv\"><scale value=\"4\"/></transform></texture>",
+    );
+    let z = z_test_against(&job, SPP, "ellipsoids-checker", "ellipsoids, checkerboard shells");
+    assert!(z.passes(), "{:.4} of the pixels pass", z.pass_fraction());
+}
+
 fn scene_with(ty: &str, file: &str, inner: &str, line: usize) -> Result<(), String> {
     let xml = format!(
         "<scene version=\"3.0.0\">\n<integrator type=\"path\"/>\n<shape type=\"{ty}\">\n\

@@ -15,7 +15,8 @@
 //! **Shells.** A template polyhedron around the origin is scaled, as Mitsuba scales it, so
 //! that its nearest vertex and its nearest face centroid lie at distance 1 or more (the one
 //! at exactly 1 fixes the scale), and then each ellipsoid's copy is placed by x ↦ c + R·(r ⊙
-//! x) with r = `extent` · scale. The templates are Mitsuba's:
+//! x) with r = `extent` · scale. The named templates are Mitsuba's own vertices and triangles
+//! (`ellipsoidsmesh/shells.rs`, read back from Mitsuba 3.9.1 by `scripts/ellipsoid_shells.py`):
 //! - `ico_sphere`: the regular icosahedron (20 triangles) with vertices on ±y and two rings
 //!   of five at latitudes ±atan(1/2), the upper ring at azimuths 0°, 72°, … and the lower at
 //!   36°, 108°, … (azimuth measured from +x towards +z); its inscribed sphere is the unit one.
@@ -24,6 +25,15 @@
 //! - `uv_sphere`: poles on ±y, four rings at polar angles 36°, 72°, 108°, 144° of nine
 //!   vertices at azimuths −50°, −10°, … (72 triangles), circumradius 1.1036.
 //! - a nested `obj`/`ply`/… shape: its triangles, where its own `to_world` put them.
+//!
+//! The order of each triangle's vertices matters beyond the geometry: a shell has no texture
+//! coordinates of its own, so a hit's (u, v) are its barycentric coordinates and ∂p/∂u, ∂p/∂v
+//! its triangle's edges, as on any mesh without them. With formula-built templates of the
+//! same shape but another vertex order, a normal-mapped conductor on icosahedral shells
+//! failed Mitsuba's render-test rule on the same 8 pixels at every seed (0.9967 of the pixels
+//! passing); with Mitsuba's order it fails on none but the scene's random fireflies. A
+//! checkerboard on the shells of `reference/ellipsoids.xml` passes at 0.9998 of the pixels,
+//! and at 0.9964 (a failure) with each triangle's vertices rotated, the same geometry.
 //!
 //! The shells have flat (face) normals, outward, and no vertex normals or texture
 //! coordinates of their own. As in Mitsuba (all its variants), a triangle is hit from its
@@ -42,6 +52,8 @@ use glam::{Vec2, Vec3};
 
 use super::ellipsoids::{check_extents, Ellipsoid};
 use super::{Mesh, MeshData, PositionSample, ShapeError};
+
+mod shells;
 use crate::geometry::{Aabb, PreliminaryHit, Ray, SurfaceInteraction};
 
 /// The shells of an `ellipsoidsmesh`: a mesh whose triangles are hit from the front only.
@@ -119,99 +131,20 @@ impl ShellTemplate {
 impl Shell {
     /// The template's vertices and outward triangles, before scaling.
     fn template(&self) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+        let table = |v: &[[f32; 3]], f: &[[u32; 3]]| {
+            (v.iter().map(|&p| Vec3::from(p)).collect(), f.to_vec())
+        };
         match self {
-            Shell::Named(ShellTemplate::IcoSphere) => icosahedron(),
-            Shell::Named(ShellTemplate::Box) => cube(),
-            Shell::Named(ShellTemplate::UvSphere) => uv_sphere(),
+            Shell::Named(ShellTemplate::IcoSphere) => {
+                table(&shells::ICO_SPHERE_VERTICES, &shells::ICO_SPHERE_FACES)
+            }
+            Shell::Named(ShellTemplate::Box) => table(&shells::BOX_VERTICES, &shells::BOX_FACES),
+            Shell::Named(ShellTemplate::UvSphere) => {
+                table(&shells::UV_SPHERE_VERTICES, &shells::UV_SPHERE_FACES)
+            }
             Shell::Mesh { positions, indices } => (positions.clone(), indices.clone()),
         }
     }
-}
-
-/// A point on the unit sphere at polar angle `theta` from +y and azimuth `phi` from +x
-/// towards +z, in degrees.
-fn on_sphere(theta: f32, phi: f32) -> Vec3 {
-    let (theta, phi) = (theta.to_radians(), phi.to_radians());
-    Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin())
-}
-
-/// Triangles `tris` turned to face away from the origin.
-fn outward(v: &[Vec3], tris: Vec<[u32; 3]>) -> Vec<[u32; 3]> {
-    tris.into_iter()
-        .map(|[a, b, c]| {
-            let (pa, pb, pc) = (v[a as usize], v[b as usize], v[c as usize]);
-            if (pb - pa).cross(pc - pa).dot(pa + pb + pc) < 0.0 {
-                [a, c, b]
-            } else {
-                [a, b, c]
-            }
-        })
-        .collect()
-}
-
-fn icosahedron() -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let lat = 90.0 - 0.5f32.atan().to_degrees();
-    let mut v = vec![on_sphere(0.0, 0.0), on_sphere(180.0, 0.0)];
-    v.extend((0..5).map(|k| on_sphere(lat, 72.0 * k as f32))); // 2..7: upper ring
-    v.extend((0..5).map(|k| on_sphere(180.0 - lat, 36.0 + 72.0 * k as f32))); // 7..12: lower
-    let (up, lo) = (|k: u32| 2 + k % 5, |k: u32| 7 + k % 5);
-    let mut tris = Vec::with_capacity(20);
-    for k in 0..5 {
-        tris.push([0, up(k), up(k + 1)]);
-        tris.push([1, lo(k), lo(k + 1)]);
-        tris.push([up(k), up(k + 1), lo(k)]);
-        tris.push([lo(k), lo(k + 1), up(k + 1)]);
-    }
-    let tris = outward(&v, tris);
-    (v, tris)
-}
-
-fn cube() -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let v: Vec<Vec3> = (0..8)
-        .map(|i| {
-            let s = |bit: u32| if i & bit != 0 { 1.0 } else { -1.0 };
-            Vec3::new(s(1), s(2), s(4))
-        })
-        .collect();
-    // each face: the four corners with one coordinate fixed, as two triangles
-    let mut tris = Vec::with_capacity(12);
-    for axis in [1u32, 2, 4] {
-        let (a, b) = match axis {
-            1 => (2, 4),
-            2 => (1, 4),
-            _ => (1, 2),
-        };
-        for side in [0, axis] {
-            let q = [side, side | a, side | a | b, side | b];
-            tris.push([q[0], q[1], q[2]]);
-            tris.push([q[0], q[2], q[3]]);
-        }
-    }
-    let tris = outward(&v, tris);
-    (v, tris)
-}
-
-fn uv_sphere() -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    const RINGS: u32 = 4;
-    const SEGMENTS: u32 = 9;
-    let mut v = vec![on_sphere(0.0, 0.0), on_sphere(180.0, 0.0)];
-    for j in 1..=RINGS {
-        for k in 0..SEGMENTS {
-            v.push(on_sphere(36.0 * j as f32, -50.0 + 40.0 * k as f32));
-        }
-    }
-    let at = |j: u32, k: u32| 2 + (j - 1) * SEGMENTS + k % SEGMENTS;
-    let mut tris = Vec::with_capacity(72);
-    for k in 0..SEGMENTS {
-        tris.push([0, at(1, k), at(1, k + 1)]);
-        tris.push([1, at(RINGS, k), at(RINGS, k + 1)]);
-        for j in 1..RINGS {
-            tris.push([at(j, k), at(j, k + 1), at(j + 1, k)]);
-            tris.push([at(j, k + 1), at(j + 1, k + 1), at(j + 1, k)]);
-        }
-    }
-    let tris = outward(&v, tris);
-    (v, tris)
 }
 
 /// The shells of `ellipsoids`, ellipsoid `i`'s scaled by `extents[i]` (none where it is 0):
@@ -277,7 +210,7 @@ mod tests {
         // (shell, triangles, vertices, circumradius: Mitsuba 3.9.1's vertex norms)
         for (shell, faces, verts, radius) in [
             (Shell::Named(ShellTemplate::IcoSphere), 20, 12, 1.25841),
-            (Shell::Named(ShellTemplate::Box), 12, 8, 1.56670),
+            (Shell::Named(ShellTemplate::Box), 12, 24, 1.56670),
             (Shell::Named(ShellTemplate::UvSphere), 72, 38, 1.10360),
         ] {
             let m = unit(&shell);
@@ -294,6 +227,111 @@ mod tests {
                 nearest = nearest.min(centroid.length());
             }
             assert!((nearest - 1.0).abs() < 1e-5, "{shell:?}: nearest centroid {nearest}");
+        }
+    }
+
+    // The polyhedra the manual describes, built from their definitions (vertex order aside).
+    /// A point on the unit sphere at polar angle `theta` from +y and azimuth `phi` from +x
+    /// towards +z, in degrees.
+    fn on_sphere(theta: f32, phi: f32) -> Vec3 {
+        let (theta, phi) = (theta.to_radians(), phi.to_radians());
+        Vec3::new(theta.sin() * phi.cos(), theta.cos(), theta.sin() * phi.sin())
+    }
+
+    /// Triangles `tris` turned to face away from the origin.
+    fn outward(v: &[Vec3], tris: Vec<[u32; 3]>) -> Vec<[u32; 3]> {
+        tris.into_iter()
+            .map(|[a, b, c]| {
+                let (pa, pb, pc) = (v[a as usize], v[b as usize], v[c as usize]);
+                if (pb - pa).cross(pc - pa).dot(pa + pb + pc) < 0.0 {
+                    [a, c, b]
+                } else {
+                    [a, b, c]
+                }
+            })
+            .collect()
+    }
+
+    fn icosahedron() -> (Vec<Vec3>, Vec<[u32; 3]>) {
+        let lat = 90.0 - 0.5f32.atan().to_degrees();
+        let mut v = vec![on_sphere(0.0, 0.0), on_sphere(180.0, 0.0)];
+        v.extend((0..5).map(|k| on_sphere(lat, 72.0 * k as f32))); // 2..7: upper ring
+        v.extend((0..5).map(|k| on_sphere(180.0 - lat, 36.0 + 72.0 * k as f32))); // 7..12: lower
+        let (up, lo) = (|k: u32| 2 + k % 5, |k: u32| 7 + k % 5);
+        let mut tris = Vec::with_capacity(20);
+        for k in 0..5 {
+            tris.push([0, up(k), up(k + 1)]);
+            tris.push([1, lo(k), lo(k + 1)]);
+            tris.push([up(k), up(k + 1), lo(k)]);
+            tris.push([lo(k), lo(k + 1), up(k + 1)]);
+        }
+        let tris = outward(&v, tris);
+        (v, tris)
+    }
+
+    fn cube() -> (Vec<Vec3>, Vec<[u32; 3]>) {
+        let v: Vec<Vec3> = (0..8)
+            .map(|i| {
+                let s = |bit: u32| if i & bit != 0 { 1.0 } else { -1.0 };
+                Vec3::new(s(1), s(2), s(4))
+            })
+            .collect();
+        // each face: the four corners with one coordinate fixed, as two triangles
+        let mut tris = Vec::with_capacity(12);
+        for axis in [1u32, 2, 4] {
+            let (a, b) = match axis {
+                1 => (2, 4),
+                2 => (1, 4),
+                _ => (1, 2),
+            };
+            for side in [0, axis] {
+                let q = [side, side | a, side | a | b, side | b];
+                tris.push([q[0], q[1], q[2]]);
+                tris.push([q[0], q[2], q[3]]);
+            }
+        }
+        let tris = outward(&v, tris);
+        (v, tris)
+    }
+
+    fn uv_sphere() -> (Vec<Vec3>, Vec<[u32; 3]>) {
+        const RINGS: u32 = 4;
+        const SEGMENTS: u32 = 9;
+        let mut v = vec![on_sphere(0.0, 0.0), on_sphere(180.0, 0.0)];
+        for j in 1..=RINGS {
+            for k in 0..SEGMENTS {
+                v.push(on_sphere(36.0 * j as f32, -50.0 + 40.0 * k as f32));
+            }
+        }
+        let at = |j: u32, k: u32| 2 + (j - 1) * SEGMENTS + k % SEGMENTS;
+        let mut tris = Vec::with_capacity(72);
+        for k in 0..SEGMENTS {
+            tris.push([0, at(1, k), at(1, k + 1)]);
+            tris.push([1, at(RINGS, k), at(RINGS, k + 1)]);
+            for j in 1..RINGS {
+                tris.push([at(j, k), at(j, k + 1), at(j + 1, k)]);
+                tris.push([at(j, k + 1), at(j + 1, k + 1), at(j + 1, k)]);
+            }
+        }
+        let tris = outward(&v, tris);
+        (v, tris)
+    }
+
+    #[test]
+    fn the_tables_are_the_polyhedra_the_manual_describes() {
+        for (shell, (vertices, faces)) in [
+            (ShellTemplate::IcoSphere, icosahedron()),
+            (ShellTemplate::Box, cube()),
+            (ShellTemplate::UvSphere, uv_sphere()),
+        ] {
+            let built = Shell::Mesh { positions: vertices, indices: faces };
+            let (a, b) = (unit(&Shell::Named(shell)), unit(&built));
+            for p in &a.positions {
+                let nearest =
+                    b.positions.iter().map(|q| (*p - *q).length()).fold(f32::MAX, f32::min);
+                assert!(nearest < 1e-4, "{shell:?}: vertex {p} is not the definition's");
+            }
+            assert_eq!(a.indices.len(), b.indices.len(), "{shell:?}");
         }
     }
 
@@ -321,10 +359,10 @@ mod tests {
             Ellipsoid { center: Vec3::ZERO, scale: Vec3::ONE, rotation: Mat3::IDENTITY },
         ];
         let m = ellipsoid_shells(&e, &[2.0, 1.0], &Shell::Named(ShellTemplate::Box)).unwrap();
-        assert_eq!((m.positions.len(), m.indices.len()), (16, 24));
-        assert!(m.indices[12..].iter().flatten().all(|&i| i >= 8));
+        assert_eq!((m.positions.len(), m.indices.len()), (48, 24));
+        assert!(m.indices[12..].iter().flatten().all(|&i| i >= 24));
         let a = 1.0 / Vec3::new(1.0 / 3.0, 1.0, 1.0 / 3.0).length();
-        for p in &m.positions[..8] {
+        for p in &m.positions[..24] {
             let local = rotation.transpose() * (*p - e[0].center) / (e[0].scale * 2.0);
             assert!((local.abs() - Vec3::splat(a)).abs().max_element() < 1e-5, "{local}");
         }

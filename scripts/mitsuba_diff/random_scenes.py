@@ -18,7 +18,12 @@ of unbounded extent from a constant or envmap sky (steradian: black, the physica
 loader now warns), and otherwise heavy-tailed scenes only. Seeds 100-159 found Mitsuba's
 `ptracer` lighting a scene wrongly from a turned envmap (tests/ptracer.rs), the two Mitsuba
 errors above again, and heavy-tailed scenes; `ptracer` behind `thinlens` or `orthographic`
-cameras, which Mitsuba renders, steradian refuses with a message."""
+cameras, which Mitsuba renders, steradian refuses with a message (`thinlens` is supported
+since). 2026-12-08: seeds 200-239 found only the two Mitsuba errors above, `twosided` around
+a transmitting BSDF (refused by both) and one heavy-tailed scene; seeds 300-481 with their PLY
+sphere swapped for `ellipsoids`/`ellipsoidsmesh` clouds (16 scenes) found the shells'
+texture coordinates in a vertex order not Mitsuba's (now its own templates) and Mitsuba's
+variant-dependent images of small ellipsoids (see shape/ellipsoids.rs)."""
 
 import os
 import random

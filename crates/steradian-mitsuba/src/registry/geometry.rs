@@ -141,16 +141,23 @@ fn curve_file(s: &ShapeArgs) -> Result<Vec<Vec<glam::Vec4>>, LoadError> {
     read_curves(&path).map_err(at_filename::<ShapeError>(s.node))
 }
 
+/// An error at `flip_normals` where the shape has none: `what` is "<the shape> has" (or
+/// "have").
+fn refuse_flip_normals(node: &PluginNode, what: &str) -> Result<(), LoadError> {
+    match node.props.position("flip_normals") {
+        Some(pos) => Err(LoadError::at(
+            pos,
+            format!("{}: {what} no 'flip_normals' (Mitsuba 3 refuses it)", node.desc()),
+        )),
+        None => Ok(()),
+    }
+}
+
 /// `sdfgrid` (core: shape/sdfgrid.rs): the SDF samples from a one-channel `.vol` file. Mitsuba
 /// reads no `flip_normals` for it; its `grid` tensor cannot be given in XML.
 fn sdfgrid(s: &ShapeArgs) -> Result<Shape, LoadError> {
     let node = s.node;
-    if let Some(pos) = node.props.position("flip_normals") {
-        return Err(LoadError::at(
-            pos,
-            format!("{}: an sdfgrid has no 'flip_normals' (Mitsuba 3 refuses it)", node.desc()),
-        ));
-    }
+    refuse_flip_normals(node, "an sdfgrid has")?;
     let normals = choice(
         node,
         "normals",
@@ -249,12 +256,7 @@ fn ellipsoid_cloud(s: &ShapeArgs) -> Result<(EllipsoidCloud, Vec<f32>), LoadErro
 /// `ellipsoids` (core: shape/ellipsoids.rs). Mitsuba reads no `flip_normals` for it.
 fn ellipsoids(s: &ShapeArgs) -> Result<Shape, LoadError> {
     let node = s.node;
-    if let Some(pos) = node.props.position("flip_normals") {
-        return Err(LoadError::at(
-            pos,
-            format!("{}: ellipsoids have no 'flip_normals' (Mitsuba 3 refuses it)", node.desc()),
-        ));
-    }
+    refuse_flip_normals(node, "ellipsoids have")?;
     let (cloud, extents) = ellipsoid_cloud(s)?;
     let shape = Ellipsoids::new(&cloud.ellipsoids, &extents).map_err(at_filename(node))?;
     Ok(Shape::Ellipsoids(shape))

@@ -219,9 +219,15 @@ fn build_shape_node(
     }
     // Mitsuba samples no points on curves, SDF grids and ellipsoid clouds: they can neither
     // emit nor carry a sensor
-    let unsampled = ["linearcurve", "bsplinecurve", "sdfgrid", "ellipsoids", "ellipsoidsmesh"];
-    if let (true, Some(c)) = (
-        unsampled.contains(&node.plugin_type.as_str()),
+    if let (
+        Shape::LinearCurve(_)
+        | Shape::BSplineCurve(_)
+        | Shape::SdfGrid(_)
+        | Shape::Ellipsoids(_)
+        | Shape::EllipsoidShells(_),
+        Some(c),
+    ) = (
+        &shape,
         node.children.iter().find(|c| matches!(c.node.tag, ObjectTag::Emitter | ObjectTag::Sensor)),
     ) {
         return Err(LoadError::at(

@@ -52,9 +52,9 @@ use glam::{Vec2, Vec3};
 
 use super::ellipsoids::{check_extents, Ellipsoid};
 use super::{Mesh, MeshData, PositionSample, ShapeError};
+use crate::geometry::{intersect_triangle, Aabb, PreliminaryHit, Ray, SurfaceInteraction};
 
 mod shells;
-use crate::geometry::{Aabb, PreliminaryHit, Ray, SurfaceInteraction};
 
 /// The shells of an `ellipsoidsmesh`: a mesh whose triangles are hit from the front only.
 #[derive(Clone, Debug)]
@@ -87,7 +87,7 @@ impl EllipsoidShells {
         if (b - a).cross(c - a).dot(ray.d) >= 0.0 {
             return None;
         }
-        self.mesh.intersect_prim(prim, ray)
+        intersect_triangle(a, b, c, ray)
     }
 
     pub fn interaction(&self, ray: &Ray, hit: &PreliminaryHit) -> SurfaceInteraction {

@@ -369,11 +369,17 @@ pub fn read_ply(path: &Path) -> Result<MeshData, ShapeError> {
 pub fn read_ply_with_attributes(
     path: &Path,
 ) -> Result<(MeshData, Vec<MeshAttributeData>), ShapeError> {
+    let (file, file_len) = open_file(path)?;
+    read(file, file_len)
+        .map_err(|msg| ShapeError(format!("PLY file \"{}\": {msg}", path.display())))
+}
+
+/// The file at `path` and its length in bytes (`u64::MAX` when unknown).
+fn open_file(path: &Path) -> Result<(std::fs::File, u64), ShapeError> {
     let file = std::fs::File::open(path)
         .map_err(|e| ShapeError(format!("cannot open PLY file \"{}\": {e}", path.display())))?;
     let file_len = file.metadata().map(|m| m.len()).unwrap_or(u64::MAX);
-    read(file, file_len)
-        .map_err(|msg| ShapeError(format!("PLY file \"{}\": {msg}", path.display())))
+    Ok((file, file_len))
 }
 
 /// The first element of a PLY file as a table (what Mitsuba's `ellipsoids` reads): the
@@ -381,9 +387,7 @@ pub fn read_ply_with_attributes(
 /// property must be a scalar.
 pub fn read_ply_table(path: &Path) -> Result<PlyTable, ShapeError> {
     let fail = |msg: String| ShapeError(format!("PLY file \"{}\": {msg}", path.display()));
-    let file = std::fs::File::open(path)
-        .map_err(|e| ShapeError(format!("cannot open PLY file \"{}\": {e}", path.display())))?;
-    let file_len = file.metadata().map(|m| m.len()).unwrap_or(u64::MAX);
+    let (file, file_len) = open_file(path)?;
     let (elements, mut body) = open_body(file, file_len).map_err(fail)?;
     let def = elements.first().ok_or_else(|| fail("the header declares no element".into()))?;
     let mut types = Vec::with_capacity(def.properties.len());
